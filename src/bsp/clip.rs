@@ -1,0 +1,159 @@
+//! Clipping polygons against a tree: csg.js's `clipPolygons`, with a work stack instead of
+//! recursion, whole-fragment classification away from the surface, and a choice of which way
+//! coplanar polygons go.
+
+use rayon::prelude::*;
+
+use super::{Kind, Label, Link, Tree};
+use crate::geom::Aabb;
+use crate::polygon::{Polygon, Split};
+
+/// Where a polygon lying in a face node's plane goes.
+///
+/// csg.js sends a coplanar polygon facing the same way as the node to the front and one facing
+/// the other way to the back (`SameFront`). Clipping the *inverted* polygons, as its
+/// invert-clip-invert step does, reverses that (`SameBack`); expressing it as a rule saves
+/// inverting polygon lists twice.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Coplanar {
+    SameFront,
+    SameBack,
+}
+
+/// A fragment that survived clipping, and whether any face node routed it as coplanar (only
+/// those can come out differently under the other [`Coplanar`] rule).
+pub(crate) struct Clipped {
+    pub polygon: Polygon,
+    pub coplanar: bool,
+}
+
+/// Below this many polygons clipping runs on the calling thread.
+const PARALLEL_MIN: usize = 512;
+const CHUNK: usize = 256;
+
+struct Work {
+    polygon: Polygon,
+    bbox: Aabb,
+    link: Link,
+    coplanar: bool,
+}
+
+impl Tree {
+    /// Clips `polygons` against the tree and keeps the fragments in regions labelled `keep`.
+    pub fn clip(&self, polygons: Vec<Polygon>, keep: Label, rule: Coplanar) -> Vec<Clipped> {
+        if polygons.len() < PARALLEL_MIN {
+            let mut out = Vec::with_capacity(polygons.len());
+            let mut stack = Vec::new();
+            for p in polygons {
+                self.clip_one(p, keep, rule, &mut stack, &mut out);
+            }
+            return out;
+        }
+        let parts: Vec<Vec<Clipped>> = polygons
+            .into_par_iter()
+            .chunks(CHUNK)
+            .map(|chunk| {
+                let mut out = Vec::with_capacity(chunk.len());
+                let mut stack = Vec::new();
+                for p in chunk {
+                    self.clip_one(p, keep, rule, &mut stack, &mut out);
+                }
+                out
+            })
+            .collect();
+        parts.into_iter().flatten().collect()
+    }
+
+    fn clip_one(
+        &self,
+        polygon: Polygon,
+        keep: Label,
+        rule: Coplanar,
+        stack: &mut Vec<Work>,
+        out: &mut Vec<Clipped>,
+    ) {
+        let eps = self.eps;
+        let margin = 2.0 * eps;
+        let bbox = polygon.bbox();
+        stack.push(Work {
+            polygon,
+            bbox,
+            link: self.root,
+            coplanar: false,
+        });
+        while let Some(w) = stack.pop() {
+            let i = match w.link {
+                Link::Leaf(label) => {
+                    if label == keep {
+                        out.push(Clipped {
+                            polygon: w.polygon,
+                            coplanar: w.coplanar,
+                        });
+                    }
+                    continue;
+                }
+                Link::Node(i) => i,
+            };
+            let node = &self.nodes[i as usize];
+            if !w.bbox.overlaps(&node.content, margin) {
+                // No surface below this node comes near the fragment: it lies in one region.
+                if self.locate(w.link, w.polygon.centroid()) == keep {
+                    out.push(Clipped {
+                        polygon: w.polygon,
+                        coplanar: w.coplanar,
+                    });
+                }
+                continue;
+            }
+            let is_face = matches!(node.kind, Kind::Face { .. });
+            let split = w.polygon.split(&node.plane, eps);
+            if !is_face
+                && matches!(split, Split::Spanning { .. })
+                && !self.near_surface(w.link, &w.bbox, margin)
+            {
+                // Only the cell's box came near: classify whole rather than cut for nothing.
+                if self.locate(w.link, w.polygon.centroid()) == keep {
+                    out.push(Clipped {
+                        polygon: w.polygon,
+                        coplanar: w.coplanar,
+                    });
+                }
+                continue;
+            }
+            match split {
+                Split::Front => stack.push(Work {
+                    link: node.front,
+                    ..w
+                }),
+                Split::Back => stack.push(Work {
+                    link: node.back,
+                    ..w
+                }),
+                Split::Coplanar => {
+                    let same = w.polygon.plane().normal.dot(node.plane.normal) > 0.0;
+                    // A cell plane carries no polygon, so either side sees the same surface.
+                    let to_front = if is_face {
+                        same == (rule == Coplanar::SameFront)
+                    } else {
+                        same
+                    };
+                    stack.push(Work {
+                        link: if to_front { node.front } else { node.back },
+                        coplanar: w.coplanar || is_face,
+                        ..w
+                    });
+                }
+                Split::Spanning { front, back } => {
+                    for (piece, link) in [(back, node.back), (front, node.front)] {
+                        stack.push(Work {
+                            bbox: piece.bbox(),
+                            polygon: piece,
+                            link,
+                            coplanar: w.coplanar,
+                        });
+                    }
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,187 @@
+//! The BSP tree of a solid: an arena of nodes with `u32` links, built and walked with explicit
+//! work stacks, so no pass recurses and no input can overflow the stack.
+//!
+//! # Shape
+//!
+//! csg.js takes the first polygon as splitter, which turns a convex solid into a chain of
+//! depth *n*. Here the tree has two kinds of node:
+//!
+//! * **Cell nodes** split space by an axis-aligned plane that carries no polygon. While a cell
+//!   holds many polygons, it is cut at a gap between polygon centroids near their median, so
+//!   both halves keep polygons and no polygon lies in the plane. The tree stays `O(log n)` deep
+//!   over the bulk of the surface.
+//! * **Face nodes** are csg.js nodes: the plane of a chosen polygon, the polygons coplanar
+//!   with it, and front/back links. A missing front child is an *outside* leaf and a missing
+//!   back child an *inside* leaf, exactly as in csg.js.
+//!
+//! Every leaf's label is right because every cell that ends in a leaf was produced by a face
+//! split whose polygon bounds it; cell splits never leave a side without polygons.
+//!
+//! Each node also records the box of all polygons below it. A fragment whose box misses that
+//! box lies in one region of the node's cell and is classified whole by locating one point.
+
+mod build;
+mod clip;
+
+pub(crate) use clip::Coplanar;
+
+use crate::geom::{Aabb, Plane};
+use crate::polygon::Polygon;
+
+/// Inside or outside the solid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Label {
+    Inside,
+    Outside,
+}
+
+/// A child link: another node or a labelled leaf.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Link {
+    Node(u32),
+    Leaf(Label),
+}
+
+#[derive(Clone, Debug)]
+pub(crate) enum Kind {
+    /// An axis-aligned plane that carries no polygon.
+    Cell,
+    /// The plane of the polygons `tree.polygons[start..end]`, all coplanar with it.
+    Face { start: u32, end: u32 },
+}
+
+#[derive(Clone, Debug)]
+pub(crate) struct Node {
+    pub plane: Plane,
+    pub kind: Kind,
+    pub front: Link,
+    pub back: Link,
+    /// The box of every polygon stored in this node and below it.
+    pub content: Aabb,
+    /// The box of the polygons stored in this node (empty for cell nodes).
+    pub own: Aabb,
+}
+
+/// A BSP tree over the polygons of one solid.
+#[derive(Clone, Debug)]
+pub(crate) struct Tree {
+    pub nodes: Vec<Node>,
+    /// The polygons of the face nodes, each node's in one contiguous run.
+    pub polygons: Vec<Polygon>,
+    pub root: Link,
+    pub eps: f64,
+}
+
+impl Tree {
+    /// The label of the region holding `p`, starting at `link`. Meant for points away from the
+    /// polygons below `link`; a point on a plane that carries no polygon nearby sees the same
+    /// label on both sides.
+    pub fn locate(&self, mut link: Link, p: glam::DVec3) -> Label {
+        loop {
+            match link {
+                Link::Leaf(label) => return label,
+                Link::Node(i) => {
+                    let node = &self.nodes[i as usize];
+                    link = if node.plane.distance(p) >= 0.0 {
+                        node.front
+                    } else {
+                        node.back
+                    };
+                }
+            }
+        }
+    }
+
+    /// True when a polygon stored at or below `link` has a box within `margin` of `bbox`.
+    pub fn near_surface(&self, link: Link, bbox: &Aabb, margin: f64) -> bool {
+        let mut stack = vec![link];
+        while let Some(link) = stack.pop() {
+            let Link::Node(i) = link else { continue };
+            let node = &self.nodes[i as usize];
+            if !bbox.overlaps(&node.content, margin) {
+                continue;
+            }
+            if bbox.overlaps(&node.own, margin)
+                && self
+                    .face_polygons(node)
+                    .iter()
+                    .any(|p| bbox.overlaps(&p.bbox(), margin))
+            {
+                return true;
+            }
+            stack.push(node.front);
+            stack.push(node.back);
+        }
+        false
+    }
+
+    /// The polygons stored at face node `i`.
+    pub fn face_polygons(&self, node: &Node) -> &[Polygon] {
+        match node.kind {
+            Kind::Face { start, end } => &self.polygons[start as usize..end as usize],
+            Kind::Cell => &[],
+        }
+    }
+
+    /// Depth of the deepest leaf (for tests and benches).
+    #[allow(dead_code)]
+    pub fn depth(&self) -> usize {
+        let mut deepest = 0;
+        let mut stack = vec![(self.root, 0usize)];
+        while let Some((link, d)) = stack.pop() {
+            deepest = deepest.max(d);
+            if let Link::Node(i) = link {
+                let n = &self.nodes[i as usize];
+                stack.push((n.front, d + 1));
+                stack.push((n.back, d + 1));
+            }
+        }
+        deepest
+    }
+}
+
+impl Tree {
+    /// Classifies a point: `Some(label)`, or `None` when it lies on the surface within the
+    /// tolerance. Where the point lies within the tolerance of a plane both sides are explored,
+    /// and a disagreement between them also means "on the surface".
+    pub fn classify_point(&self, p: glam::DVec3) -> Option<Label> {
+        let eps = self.eps;
+        let (mut inside, mut outside) = (false, false);
+        let mut stack = vec![self.root];
+        while let Some(link) = stack.pop() {
+            let i = match link {
+                Link::Leaf(Label::Inside) => {
+                    inside = true;
+                    continue;
+                }
+                Link::Leaf(Label::Outside) => {
+                    outside = true;
+                    continue;
+                }
+                Link::Node(i) => i,
+            };
+            let node = &self.nodes[i as usize];
+            let d = node.plane.distance(p);
+            if d > eps {
+                stack.push(node.front);
+            } else if d < -eps {
+                stack.push(node.back);
+            } else {
+                if self
+                    .face_polygons(node)
+                    .iter()
+                    .any(|poly| poly.contains_coplanar_point(p, eps))
+                {
+                    return None;
+                }
+                stack.push(node.front);
+                stack.push(node.back);
+            }
+        }
+        match (inside, outside) {
+            (true, false) => Some(Label::Inside),
+            (false, true) => Some(Label::Outside),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,65 @@
+//! # bspcsg
+//!
+//! Constructive solid geometry on polygon meshes: union, intersection and difference of solids
+//! by BSP trees and the csg.js clipping rules, with output that is a closed 2-manifold.
+//!
+//! ```
+//! use bspcsg::Solid;
+//! use glam::DVec3;
+//!
+//! let block = Solid::cuboid(DVec3::new(2.0, 1.0, 1.0))?;
+//! let hole = Solid::cylinder(0.3, 2.0, 48)?;
+//! let part = &block - &hole;
+//! assert!(part.volume() < block.volume());
+//! let mesh = part.to_mesh();
+//! assert!(mesh.triangle_count() > 0);
+//! # Ok::<(), bspcsg::Error>(())
+//! ```
+//!
+//! # Conventions
+//!
+//! Right-handed, Y up; primitives are centred at the origin and cylinders run along Y. Faces
+//! wind counter-clockwise seen from outside, so a closed solid has positive volume. All
+//! arithmetic is `f64` (glam's `DVec3`).
+//!
+//! # Tolerance
+//!
+//! Every boolean uses one plane-side epsilon: a vertex within `eps` of a plane lies on it, both
+//! when polygons are classified and when they are split.
+//!
+//! `eps = max(1e-9 × d, 2⁻⁴⁰ × m)`, where `d` is the diagonal of the region where the two
+//! operands' bounding boxes meet and `m` the largest coordinate magnitude in it (the floor keeps
+//! `eps` above rounding error far from the origin). Scaling both operands by any factor scales
+//! `eps` with them, so results at scale 10⁻⁶, 1 and 10⁶ are the same up to that scale; a huge
+//! operand does not blur a small one, because only the region they share counts. A solid made
+//! by a boolean carries its `eps`, and later booleans never use a smaller one.
+//!
+//! # Stack safety
+//!
+//! Trees live in arenas (`Vec` with `u32` links) and every pass — build, clip, point location,
+//! drop — walks them with an explicit work stack, so no input can overflow the stack.
+//!
+//! # Panics
+//!
+//! Public functions do not panic on any input; constructors return [`Result`].
+
+#![warn(missing_docs)]
+
+mod boolean;
+mod bsp;
+mod error;
+mod geom;
+mod mesh;
+mod polygon;
+mod primitives;
+mod solid;
+
+pub use boolean::{BoolOp, boolean};
+pub use error::{Error, Result};
+pub use geom::{Aabb, Plane, Side, Tolerance};
+pub use mesh::{Material, Mesh};
+pub use polygon::Polygon;
+pub use primitives::{MAX_SEGMENTS, MIN_SEGMENTS, segments_for_tolerance};
+pub use solid::{Containment, PointClassifier, Solid};
+
+pub use glam;

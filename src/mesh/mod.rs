@@ -1,0 +1,95 @@
+//! The indexed triangle mesh: what booleans and marching cubes produce and file writers consume.
+
+use glam::DVec3;
+
+use crate::geom::Aabb;
+
+/// An indexed triangle mesh with f64 positions and, per triangle, the id of the input it came
+/// from (materials ride on these ids). Triangles wind counter-clockwise seen from outside.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions.
+    pub positions: Vec<DVec3>,
+    /// Vertex indices of each triangle.
+    pub triangles: Vec<[u32; 3]>,
+    /// Per-triangle source id; same length as `triangles`.
+    pub sources: Vec<u32>,
+}
+
+/// A named colour for the triangles of one source id.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// The name written to files (glTF material name, OBJ `usemtl`).
+    pub name: String,
+    /// Linear RGBA, each in 0..=1.
+    pub base_color: [f64; 4],
+}
+
+impl Mesh {
+    /// A mesh whose triangles all have source id 0.
+    pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Self {
+        let sources = vec![0; triangles.len()];
+        Mesh {
+            positions,
+            triangles,
+            sources,
+        }
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// True when the mesh has no triangles.
+    pub fn is_empty(&self) -> bool {
+        self.triangles.is_empty()
+    }
+
+    /// The corner positions of triangle `t`.
+    pub fn triangle(&self, t: usize) -> [DVec3; 3] {
+        self.triangles[t].map(|i| self.positions[i as usize])
+    }
+
+    /// The bounding box of the vertices used by triangles.
+    pub fn bbox(&self) -> Aabb {
+        let mut b = Aabb::EMPTY;
+        for t in &self.triangles {
+            for &i in t {
+                b.grow(self.positions[i as usize]);
+            }
+        }
+        b
+    }
+
+    /// Signed volume by the divergence theorem, summed relative to the box centre so that
+    /// meshes far from the origin lose no precision. Positive for outward-facing closed meshes.
+    pub fn volume(&self) -> f64 {
+        let c = self.bbox().center();
+        let sum: f64 = (0..self.triangles.len())
+            .map(|t| {
+                let [a, b, d] = self.triangle(t).map(|p| p - c);
+                a.dot(b.cross(d))
+            })
+            .sum();
+        sum / 6.0
+    }
+
+    /// Total surface area.
+    pub fn area(&self) -> f64 {
+        (0..self.triangles.len())
+            .map(|t| {
+                let [a, b, c] = self.triangle(t);
+                0.5 * (b - a).cross(c - a).length()
+            })
+            .sum()
+    }
+}
+
+pub(crate) mod triangulate;
+pub(crate) mod weld;

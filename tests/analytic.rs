@@ -1,0 +1,134 @@
+//! Analytic cases with known volumes and areas.
+
+use approx::assert_relative_eq;
+use bspcsg::{Containment, Solid};
+use glam::DVec3;
+
+fn cube(size: f64) -> Solid {
+    Solid::cube(size).unwrap()
+}
+
+fn moved(s: &Solid, x: f64, y: f64, z: f64) -> Solid {
+    s.clone().translate(DVec3::new(x, y, z)).unwrap()
+}
+
+#[test]
+fn adjacent_cubes_union() {
+    let a = cube(1.0);
+    let b = moved(&a, 1.0, 0.0, 0.0);
+    let u = &a | &b;
+    assert_relative_eq!(u.volume(), 2.0, max_relative = 1e-12);
+    assert_relative_eq!(u.area(), 10.0, max_relative = 1e-12);
+}
+
+#[test]
+fn half_overlapping_cubes() {
+    let a = cube(1.0);
+    let b = moved(&a, 0.5, 0.0, 0.0);
+    assert_relative_eq!((&a | &b).volume(), 1.5, max_relative = 1e-12);
+    assert_relative_eq!((&a - &b).volume(), 0.5, max_relative = 1e-12);
+    assert_relative_eq!((&a & &b).volume(), 0.5, max_relative = 1e-12);
+    assert_relative_eq!((&a | &b).area(), 8.0, max_relative = 1e-12);
+    assert_relative_eq!((&a - &b).area(), 4.0, max_relative = 1e-12);
+    assert_relative_eq!((&a & &b).area(), 4.0, max_relative = 1e-12);
+}
+
+#[test]
+fn cube_minus_corner_cube() {
+    // cube(2) spans [-1, 1]; cube(1) moved to [0, 1] shares the corner (1, 1, 1).
+    let a = cube(2.0);
+    let b = moved(&cube(1.0), 0.5, 0.5, 0.5);
+    let d = &a - &b;
+    assert_relative_eq!(d.volume(), 7.0, max_relative = 1e-12);
+    assert_relative_eq!(d.area(), 24.0, max_relative = 1e-12);
+}
+
+#[test]
+fn self_operations() {
+    for a in [
+        cube(1.0),
+        Solid::sphere(1.0, 24, 12).unwrap(),
+        Solid::torus(1.0, 0.3, 24, 12).unwrap(),
+    ] {
+        let v = a.volume();
+        assert!((&a - &a).is_empty(), "A - A must be empty");
+        assert_relative_eq!((&a | &a).volume(), v, max_relative = 1e-12);
+        assert_relative_eq!((&a & &a).volume(), v, max_relative = 1e-12);
+        assert_relative_eq!((&a | &a).area(), a.area(), max_relative = 1e-12);
+        assert_relative_eq!((&a & &a).area(), a.area(), max_relative = 1e-12);
+    }
+}
+
+#[test]
+fn disjoint_unions_add() {
+    let a = Solid::sphere(1.0, 32, 16).unwrap();
+    let b = moved(&cube(1.0), 5.0, 0.0, 0.0);
+    let u = &a | &b;
+    assert_relative_eq!(u.volume(), a.volume() + 1.0, max_relative = 1e-12);
+    assert!((&a & &b).is_empty());
+    assert_relative_eq!((&a - &b).volume(), a.volume(), max_relative = 1e-12);
+}
+
+#[test]
+fn empty_operands() {
+    let a = cube(1.0);
+    let e = Solid::empty();
+    assert_relative_eq!((&a | &e).volume(), 1.0);
+    assert_relative_eq!((&e | &a).volume(), 1.0);
+    assert!((&e - &a).is_empty());
+    assert!((&a & &e).is_empty());
+    assert_relative_eq!((&a - &e).volume(), 1.0);
+}
+
+#[test]
+fn sphere_volume_converges() {
+    let exact = 4.0 / 3.0 * std::f64::consts::PI;
+    let mut last_err = f64::INFINITY;
+    for n in [8u32, 16, 32, 64, 128, 256] {
+        let err = (Solid::sphere(1.0, n, n / 2).unwrap().volume() - exact).abs() / exact;
+        assert!(err < last_err, "error must shrink: {err} after {last_err}");
+        last_err = err;
+    }
+    assert!(last_err < 1e-3, "{last_err}");
+}
+
+#[test]
+fn primitive_volumes() {
+    let pi = std::f64::consts::PI;
+    let n = 512u32;
+    let inscribed = |r: f64| 0.5 * n as f64 * r * r * (2.0 * pi / n as f64).sin();
+    assert_relative_eq!(
+        Solid::cylinder(1.0, 2.0, n).unwrap().volume(),
+        inscribed(1.0) * 2.0,
+        max_relative = 1e-12
+    );
+    assert_relative_eq!(
+        Solid::cone(1.0, 3.0, n).unwrap().volume(),
+        inscribed(1.0) * 3.0 / 3.0,
+        max_relative = 1e-12
+    );
+    let torus = Solid::torus(2.0, 0.5, 256, 128).unwrap().volume();
+    assert_relative_eq!(torus, 2.0 * pi * pi * 2.0 * 0.25, max_relative = 1e-3);
+    assert_relative_eq!(
+        Solid::cuboid(DVec3::new(1.0, 2.0, 3.0)).unwrap().volume(),
+        6.0
+    );
+}
+
+#[test]
+fn containment() {
+    let a = cube(2.0);
+    assert_eq!(a.contains(DVec3::ZERO), Containment::Inside);
+    assert_eq!(
+        a.contains(DVec3::new(1.0, 0.3, 0.2)),
+        Containment::OnBoundary
+    );
+    assert_eq!(
+        a.contains(DVec3::new(1.0, 1.0, 1.0)),
+        Containment::OnBoundary
+    );
+    assert_eq!(a.contains(DVec3::new(1.5, 0.0, 0.0)), Containment::Outside);
+    let s = Solid::sphere(1.0, 64, 32).unwrap();
+    assert_eq!(s.contains(DVec3::new(0.0, 0.9, 0.0)), Containment::Inside);
+    assert_eq!(s.contains(DVec3::new(0.0, 1.1, 0.0)), Containment::Outside);
+}
