@@ -1,24 +1,32 @@
-use bspcsg::Solid;
-use glam::DVec3;
+#[path = "../benches/common/cases.rs"]
+mod cases;
 use std::time::Instant;
+fn med(mut f: impl FnMut() -> usize) -> (f64, usize) {
+    let mut t = vec![];
+    let mut n = 0;
+    for _ in 0..9 {
+        let s = Instant::now();
+        n = f();
+        t.push(s.elapsed().as_secs_f64() * 1e3);
+    }
+    t.sort_by(f64::total_cmp);
+    (t[4], n)
+}
 fn main() {
     for n in [32u32, 64, 128, 256] {
-        let a = Solid::sphere(1.0, n, n / 2).unwrap();
-        let b = a.clone().translate(DVec3::new(0.5, 0.0, 0.0)).unwrap();
-        let mut times = vec![];
-        let mut u = Solid::empty();
-        for _ in 0..7 {
-            let t = Instant::now();
-            u = &a | &b;
-            times.push(t.elapsed().as_secs_f64() * 1e3);
-        }
-        times.sort_by(f64::total_cmp);
+        let (a, b) = cases::sphere_pair(n);
+        let (t, c) = med(|| (&a | &b).polygon_count());
         println!(
-            "n={n} polys={} -> {} polys, vol {:.6}, median {:.2} ms",
-            a.polygon_count(),
-            u.polygon_count(),
-            u.volume(),
-            times[3]
+            "sphere {n}: {t:.2} ms, {c} polys, vol {:.9}",
+            (&a | &b).volume()
         );
     }
+    let (t, c) = med(|| cases::menger_sponge(3).polygon_count());
+    println!(
+        "menger3: {t:.2} ms {c} polys vol {:.9}",
+        cases::menger_sponge(3).volume()
+    );
+    let (bl, h) = cases::block_and_holes(32);
+    let (t, c) = med(|| (&bl - &h).polygon_count());
+    println!("block-holes: {t:.2} ms {c} polys");
 }

@@ -5,8 +5,9 @@ use std::ops::{BitAnd, BitAndAssign, BitOr, BitOrAssign, Sub, SubAssign};
 
 use rayon::prelude::*;
 
-use crate::bsp::{Coplanar, Label, Tree};
-use crate::geom::Tolerance;
+use crate::bsp::{Coplanar, FOCUS_MARGIN, Label, Surface, Tree};
+use crate::geom::{Aabb, Tolerance};
+use crate::mesh::weld::{FxHashMap, key};
 use crate::polygon::Polygon;
 use crate::solid::Solid;
 
@@ -50,11 +51,7 @@ fn boolean_owned(a: Solid, b: Solid, op: BoolOp) -> Solid {
         return disjoint(a, b, op);
     }
     let (a, b) = (a.into_polygons(), b.into_polygons());
-    let (tree_a, tree_b) = rayon::join(
-        || Tree::build(a.clone(), eps),
-        || Tree::build(b.clone(), eps),
-    );
-    let (a_rule, keep) = match op {
+    let (a_rule, a_keep) = match op {
         BoolOp::Union => (Coplanar::SameFront, Label::Outside),
         BoolOp::Intersection => (Coplanar::SameBack, Label::Inside),
         BoolOp::Difference => (Coplanar::SameBack, Label::Outside),
@@ -63,23 +60,29 @@ fn boolean_owned(a: Solid, b: Solid, op: BoolOp) -> Solid {
         BoolOp::Union => Label::Outside,
         BoolOp::Intersection | BoolOp::Difference => Label::Inside,
     };
+    let (surface_a, surface_b) = rayon::join(|| Surface::new(&a, eps), || Surface::new(&b, eps));
+    let margin = FOCUS_MARGIN * eps;
+    let (near_a, near_b) = rayon::join(
+        || near_flags(&a, &surface_b, margin),
+        || near_flags(&b, &surface_a, margin),
+    );
     let (a_kept, b_kept) = rayon::join(
         || {
-            tree_b
-                .clip(a, keep, a_rule)
-                .into_iter()
-                .map(|c| c.polygon)
-                .collect::<Vec<_>>()
+            let tree_b = Tree::build_focused(b.clone(), eps, Some(&boxes(&a, &near_a)));
+            let mut kept = keep_far(&a, &near_a, &surface_b, a_keep);
+            let near = tree_b.clip(pick(&a, &near_a), a_keep, a_rule, &surface_b);
+            kept.extend(near.into_iter().map(|c| c.polygon));
+            kept
         },
         || {
-            let first = tree_a.clip(b, b_keep, Coplanar::SameFront);
+            let tree_a = Tree::build_focused(a.clone(), eps, Some(&boxes(&b, &near_b)));
+            let mut kept = keep_far(&b, &near_b, &surface_a, b_keep);
+            let first = tree_a.clip(pick(&b, &near_b), b_keep, Coplanar::SameFront, &surface_a);
             let (again, done): (Vec<_>, Vec<_>) = first.into_iter().partition(|c| c.coplanar);
             let again: Vec<Polygon> = again.into_iter().map(|c| c.polygon).collect();
-            let second = tree_a.clip(again, b_keep, Coplanar::SameBack);
-            done.into_iter()
-                .chain(second)
-                .map(|c| c.polygon)
-                .collect::<Vec<_>>()
+            let second = tree_a.clip(again, b_keep, Coplanar::SameBack, &surface_a);
+            kept.extend(done.into_iter().chain(second).map(|c| c.polygon));
+            kept
         },
     );
     let mut polygons = a_kept;
@@ -91,6 +94,93 @@ fn boolean_owned(a: Solid, b: Solid, op: BoolOp) -> Solid {
         polygons.push(p);
     }
     Solid::with_eps(polygons, eps)
+}
+
+/// For each polygon, whether its box comes within `margin` of the other operand's surface.
+fn near_flags(polys: &[Polygon], other: &Surface, margin: f64) -> Vec<bool> {
+    polys
+        .par_iter()
+        .with_min_len(256)
+        .map(|p| other.near(&p.bbox(), margin))
+        .collect()
+}
+
+fn pick(polys: &[Polygon], near: &[bool]) -> Vec<Polygon> {
+    polys
+        .iter()
+        .zip(near)
+        .filter(|(_, n)| **n)
+        .map(|(p, _)| p.clone())
+        .collect()
+}
+
+fn boxes(polys: &[Polygon], near: &[bool]) -> Vec<Aabb> {
+    polys
+        .iter()
+        .zip(near)
+        .filter(|(_, n)| **n)
+        .map(|(p, _)| p.bbox())
+        .collect()
+}
+
+/// The polygons away from the other surface whose region is labelled `keep`. Polygons sharing a
+/// vertex, both away from the other surface, lie in the same region, so each connected group
+/// needs one ray.
+fn keep_far(polys: &[Polygon], near: &[bool], other: &Surface, keep: Label) -> Vec<Polygon> {
+    let mut groups = DisjointSets::new(polys.len());
+    let mut first_at: FxHashMap<[u64; 3], u32> =
+        FxHashMap::with_capacity_and_hasher(polys.len(), Default::default());
+    for (i, p) in polys.iter().enumerate() {
+        if near[i] {
+            continue;
+        }
+        for &v in p.vertices() {
+            let j = *first_at.entry(key(v)).or_insert(i as u32);
+            groups.union(i as u32, j);
+        }
+    }
+    let mut label: Vec<Option<Label>> = vec![None; polys.len()];
+    let mut kept = Vec::new();
+    for (i, p) in polys.iter().enumerate() {
+        if near[i] {
+            continue;
+        }
+        let root = groups.find(i as u32) as usize;
+        let l = *label[root].get_or_insert_with(|| other.label(p.centroid()));
+        if l == keep {
+            kept.push(p.clone());
+        }
+    }
+    kept
+}
+
+/// Union–find with path halving.
+struct DisjointSets {
+    parent: Vec<u32>,
+}
+
+impl DisjointSets {
+    fn new(n: usize) -> Self {
+        DisjointSets {
+            parent: (0..n as u32).collect(),
+        }
+    }
+
+    fn find(&mut self, mut x: u32) -> u32 {
+        while self.parent[x as usize] != x {
+            let grand = self.parent[self.parent[x as usize] as usize];
+            self.parent[x as usize] = grand;
+            x = grand;
+        }
+        x
+    }
+
+    fn union(&mut self, a: u32, b: u32) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra != rb {
+            self.parent[ra.max(rb) as usize] = ra.min(rb);
+        }
+    }
 }
 
 /// The result when the operands cannot interact: one is empty or their boxes do not meet.

@@ -1,4 +1,7 @@
 //! Building the tree: cell splits while a cell holds many polygons, face splits below.
+//!
+//! Polygons live in an arena with their boxes and centroids cached; the work items carry only
+//! `u32` ids, so partitioning a level moves four bytes per polygon, not the polygon.
 
 use glam::DVec3;
 
@@ -10,6 +13,10 @@ use crate::polygon::{Polygon, Split};
 const CELL_POLYGONS: usize = 12;
 /// How many polygons a face split tries as splitter.
 const SPLITTER_CANDIDATES: usize = 5;
+/// The margin by which a cell must miss every focus box to be left unbuilt, in tolerances. It
+/// exceeds the clip's early-out margin (2), so a fragment of a focus polygon is classified whole
+/// before it could reach an unbuilt cell.
+pub(crate) const FOCUS_MARGIN: f64 = 4.0;
 
 /// Where a finished node is linked in.
 #[derive(Clone, Copy)]
@@ -19,48 +26,122 @@ enum Slot {
     Back(u32),
 }
 
+/// Polygons with their boxes and centroids; split pieces are appended.
+struct Arena {
+    polys: Vec<Polygon>,
+    boxes: Vec<Aabb>,
+    centroids: Vec<DVec3>,
+}
+
+impl Arena {
+    fn new(polys: Vec<Polygon>) -> Self {
+        let boxes = polys.iter().map(Polygon::bbox).collect();
+        let centroids = polys.iter().map(Polygon::centroid).collect();
+        Arena {
+            polys,
+            boxes,
+            centroids,
+        }
+    }
+
+    fn push(&mut self, p: Polygon) -> u32 {
+        self.boxes.push(p.bbox());
+        self.centroids.push(p.centroid());
+        self.polys.push(p);
+        (self.polys.len() - 1) as u32
+    }
+
+    fn bbox_of(&self, ids: &[u32]) -> Aabb {
+        ids.iter()
+            .fold(Aabb::EMPTY, |b, &i| b.union(&self.boxes[i as usize]))
+    }
+}
+
+struct Work {
+    ids: Vec<u32>,
+    slot: Slot,
+    /// Indices of the focus boxes that may reach this cell (`None`: build everything).
+    focus: Option<Vec<u32>>,
+}
+
 impl Tree {
-    /// Builds the tree of a closed solid's polygons with plane-side tolerance `eps`.
+    /// Builds the whole tree of a closed solid's polygons with plane-side tolerance `eps`.
     pub fn build(polygons: Vec<Polygon>, eps: f64) -> Tree {
+        Tree::build_focused(polygons, eps, None)
+    }
+
+    /// Builds the tree, but where `focus` is given, only the cells whose polygons come within
+    /// [`FOCUS_MARGIN`] tolerances of a focus box; the rest stay [`Kind::Stub`]s. Booleans pass
+    /// the boxes of the other operand's polygons that come near this surface: only those are
+    /// clipped, and their fragments never reach an unbuilt cell.
+    pub fn build_focused(polygons: Vec<Polygon>, eps: f64, focus: Option<&[Aabb]>) -> Tree {
         let mut tree = Tree {
-            nodes: Vec::with_capacity(polygons.len()),
-            polygons: Vec::with_capacity(polygons.len()),
+            nodes: Vec::new(),
+            polygons: Vec::new(),
             root: Link::Leaf(Label::Outside),
             eps,
         };
         if polygons.is_empty() {
             return tree;
         }
-        let mut work = vec![(polygons, Slot::Root)];
-        while let Some((polys, slot)) = work.pop() {
+        let margin = FOCUS_MARGIN * eps;
+        let mut arena = Arena::new(polygons);
+        let mut work = vec![Work {
+            ids: (0..arena.polys.len() as u32).collect(),
+            slot: Slot::Root,
+            focus: focus.map(|f| (0..f.len() as u32).collect()),
+        }];
+        while let Some(Work {
+            ids,
+            slot,
+            focus: near,
+        }) = work.pop()
+        {
             let index = tree.nodes.len() as u32;
-            let cell = if polys.len() > CELL_POLYGONS {
-                cell_plane(&polys, eps)
+            let near = match (focus, near) {
+                (Some(boxes), Some(near)) => {
+                    // Keep only the focus boxes that reach this cell's polygons.
+                    let content = arena.bbox_of(&ids);
+                    let near: Vec<u32> = near
+                        .into_iter()
+                        .filter(|&i| boxes[i as usize].overlaps(&content, margin))
+                        .collect();
+                    if near.is_empty() {
+                        tree.nodes.push(Node::stub(content));
+                        tree.attach(slot, index);
+                        continue;
+                    }
+                    Some(near)
+                }
+                _ => None,
+            };
+            let cell = if ids.len() > CELL_POLYGONS {
+                cell_plane(&ids, &arena, eps)
             } else {
                 None
             };
             let (node, front, back) = match cell {
                 Some(plane) => {
-                    let (front, back) = split_cell(polys, &plane, eps);
-                    let node = Node {
-                        plane,
-                        kind: Kind::Cell,
-                        front: Link::Leaf(Label::Outside),
-                        back: Link::Leaf(Label::Inside),
-                        content: Aabb::EMPTY,
-                        own: Aabb::EMPTY,
-                    };
-                    (node, front, back)
+                    let (front, back) = split_cell(ids, &plane, eps, &mut arena);
+                    (Node::cell(plane), front, back)
                 }
-                None => tree.face_node(polys, eps),
+                None => tree.face_node(ids, eps, &mut arena),
             };
             tree.nodes.push(node);
             tree.attach(slot, index);
             if !front.is_empty() {
-                work.push((front, Slot::Front(index)));
+                work.push(Work {
+                    ids: front,
+                    slot: Slot::Front(index),
+                    focus: near.clone(),
+                });
             }
             if !back.is_empty() {
-                work.push((back, Slot::Back(index)));
+                work.push(Work {
+                    ids: back,
+                    slot: Slot::Back(index),
+                    focus: near,
+                });
             }
         }
         tree.fill_content();
@@ -78,22 +159,27 @@ impl Tree {
     /// A csg.js node: the chosen splitter's plane keeps the polygons coplanar with it; the rest
     /// go front or back, split where they span it. Empty sides stay leaves: outside in front,
     /// inside behind.
-    fn face_node(&mut self, polys: Vec<Polygon>, eps: f64) -> (Node, Vec<Polygon>, Vec<Polygon>) {
-        let plane = *polys[choose_splitter(&polys, eps)].plane();
+    fn face_node(
+        &mut self,
+        ids: Vec<u32>,
+        eps: f64,
+        arena: &mut Arena,
+    ) -> (Node, Vec<u32>, Vec<u32>) {
+        let plane = *arena.polys[choose_splitter(&ids, arena, eps) as usize].plane();
         let start = self.polygons.len() as u32;
-        let mut content = Aabb::EMPTY;
+        let mut own = Aabb::EMPTY;
         let (mut front, mut back) = (Vec::new(), Vec::new());
-        for p in polys {
-            match p.split(&plane, eps) {
+        for id in ids {
+            match arena.polys[id as usize].split(&plane, eps) {
                 Split::Coplanar => {
-                    content = content.union(&p.bbox());
-                    self.polygons.push(p);
+                    own = own.union(&arena.boxes[id as usize]);
+                    self.polygons.push(arena.polys[id as usize].clone());
                 }
-                Split::Front => front.push(p),
-                Split::Back => back.push(p),
+                Split::Front => front.push(id),
+                Split::Back => back.push(id),
                 Split::Spanning { front: f, back: b } => {
-                    front.push(f);
-                    back.push(b);
+                    front.push(arena.push(f));
+                    back.push(arena.push(b));
                 }
             }
         }
@@ -105,8 +191,8 @@ impl Tree {
             },
             front: Link::Leaf(Label::Outside),
             back: Link::Leaf(Label::Inside),
-            content,
-            own: content,
+            content: own,
+            own,
         };
         (node, front, back)
     }
@@ -114,6 +200,9 @@ impl Tree {
     /// Each node's content box grows by its children's; children come after their parents.
     fn fill_content(&mut self) {
         for i in (0..self.nodes.len()).rev() {
+            if matches!(self.nodes[i].kind, Kind::Stub) {
+                continue;
+            }
             let (front, back) = (self.nodes[i].front, self.nodes[i].back);
             let mut content = self.nodes[i].content;
             for link in [front, back] {
@@ -126,49 +215,84 @@ impl Tree {
     }
 }
 
+impl Node {
+    fn cell(plane: Plane) -> Node {
+        Node {
+            plane,
+            kind: Kind::Cell,
+            front: Link::Leaf(Label::Outside),
+            back: Link::Leaf(Label::Inside),
+            content: Aabb::EMPTY,
+            own: Aabb::EMPTY,
+        }
+    }
+
+    fn stub(content: Aabb) -> Node {
+        Node {
+            plane: Plane {
+                normal: DVec3::X,
+                offset: 0.0,
+            },
+            kind: Kind::Stub,
+            front: Link::Leaf(Label::Outside),
+            back: Link::Leaf(Label::Outside),
+            content,
+            own: Aabb::EMPTY,
+        }
+    }
+}
+
 /// An axis-aligned plane through a gap between polygon centroids near their median, on the
 /// longest axis that has one. The gap is wider than four tolerances, so no polygon lies in the
 /// plane and both sides keep a polygon whose centroid, hence some vertex, is clearly on it.
 /// `None` when no axis has such a gap or the plane would cut too many polygons.
-fn cell_plane(polys: &[Polygon], eps: f64) -> Option<Plane> {
-    let centroids: Vec<DVec3> = polys.iter().map(Polygon::centroid).collect();
-    let size = Aabb::from_points(&centroids).size();
+fn cell_plane(ids: &[u32], arena: &Arena, eps: f64) -> Option<Plane> {
+    let size = Aabb::from_points(ids.iter().map(|&i| &arena.centroids[i as usize])).size();
     let mut axes = [0usize, 1, 2];
     axes.sort_by(|&a, &b| size[b].total_cmp(&size[a]));
-    let n = centroids.len();
+    let n = ids.len();
     let mut values: Vec<f64> = Vec::with_capacity(n);
     for axis in axes {
         if size[axis] <= 4.0 * eps {
             break;
         }
         values.clear();
-        values.extend(centroids.iter().map(|c| c[axis]));
-        values.sort_unstable_by(f64::total_cmp);
-        let Some(at) = gap_near_median(&values, 4.0 * eps) else {
+        values.extend(ids.iter().map(|&i| arena.centroids[i as usize][axis]));
+        let Some(at) = gap_near_median(&mut values, 4.0 * eps) else {
             continue;
         };
-        let mut normal = DVec3::ZERO;
-        normal[axis] = 1.0;
-        let plane = Plane { normal, offset: at };
-        let spanning = polys
+        let spanning = ids
             .iter()
-            .filter(|p| {
-                let (lo, hi) = extent(p, axis);
-                lo < at - eps && hi > at + eps
+            .filter(|&&i| {
+                let b = &arena.boxes[i as usize];
+                b.min[axis] < at - eps && b.max[axis] > at + eps
             })
             .count();
         if spanning * 2 <= n {
-            return Some(plane);
+            let mut normal = DVec3::ZERO;
+            normal[axis] = 1.0;
+            return Some(Plane { normal, offset: at });
         }
     }
     None
 }
 
-/// The midpoint of the gap wider than `min_gap` nearest the middle of sorted `values`, looking
-/// no further than the middle half.
-fn gap_near_median(values: &[f64], min_gap: f64) -> Option<f64> {
+/// The midpoint of a gap wider than `min_gap` next to the median of `values` (reordered), in
+/// linear time; where the median value repeats, the gap nearest the middle of the sorted values
+/// within the middle half.
+fn gap_near_median(values: &mut [f64], min_gap: f64) -> Option<f64> {
     let n = values.len();
     let mid = n / 2;
+    let (below, &mut median, above) = values.select_nth_unstable_by(mid, f64::total_cmp);
+    let lower = below.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if median - lower > min_gap && lower.is_finite() {
+        return Some(0.5 * (lower + median));
+    }
+    let upper = above.iter().copied().fold(f64::INFINITY, f64::min);
+    if upper - median > min_gap && upper.is_finite() {
+        return Some(0.5 * (median + upper));
+    }
+    values.sort_unstable_by(f64::total_cmp);
     for k in 0..=n / 4 {
         for i in [mid + k, mid.wrapping_sub(k)] {
             if i >= 1 && i < n && values[i] - values[i - 1] > min_gap {
@@ -179,27 +303,36 @@ fn gap_near_median(values: &[f64], min_gap: f64) -> Option<f64> {
     None
 }
 
-fn extent(p: &Polygon, axis: usize) -> (f64, f64) {
-    p.vertices()
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-            (lo.min(v[axis]), hi.max(v[axis]))
-        })
-}
-
 /// Splits a cell's polygons by its axis plane. No polygon is coplanar with it (see
 /// [`cell_plane`]); one that is anyway, within tolerance, goes the way its normal points.
-fn split_cell(polys: Vec<Polygon>, plane: &Plane, eps: f64) -> (Vec<Polygon>, Vec<Polygon>) {
-    let (mut front, mut back) = (Vec::new(), Vec::new());
-    for p in polys {
-        match p.split(plane, eps) {
-            Split::Front => front.push(p),
-            Split::Back => back.push(p),
-            Split::Coplanar if p.plane().normal.dot(plane.normal) > 0.0 => front.push(p),
-            Split::Coplanar => back.push(p),
+fn split_cell(ids: Vec<u32>, plane: &Plane, eps: f64, arena: &mut Arena) -> (Vec<u32>, Vec<u32>) {
+    let axis = plane.normal.abs().max_position();
+    let at = plane.offset;
+    let (mut front, mut back) = (
+        Vec::with_capacity(ids.len() / 2),
+        Vec::with_capacity(ids.len() / 2),
+    );
+    for id in ids {
+        // The box settles most polygons without looking at their vertices.
+        let b = &arena.boxes[id as usize];
+        if b.min[axis] >= at - eps && b.max[axis] > at + eps {
+            front.push(id);
+            continue;
+        }
+        if b.max[axis] <= at + eps && b.min[axis] < at - eps {
+            back.push(id);
+            continue;
+        }
+        match arena.polys[id as usize].split(plane, eps) {
+            Split::Front => front.push(id),
+            Split::Back => back.push(id),
+            Split::Coplanar if arena.polys[id as usize].plane().normal.dot(plane.normal) > 0.0 => {
+                front.push(id)
+            }
+            Split::Coplanar => back.push(id),
             Split::Spanning { front: f, back: b } => {
-                front.push(f);
-                back.push(b);
+                front.push(arena.push(f));
+                back.push(arena.push(b));
             }
         }
     }
@@ -207,29 +340,46 @@ fn split_cell(polys: Vec<Polygon>, plane: &Plane, eps: f64) -> (Vec<Polygon>, Ve
 }
 
 /// The splitter for a face node: of a few evenly spaced candidates, the one that cuts the fewest
-/// polygons, then leaves the sides most even.
-fn choose_splitter(polys: &[Polygon], eps: f64) -> usize {
-    let n = polys.len();
+/// polygons, then leaves the sides most even. A candidate that cuts nothing and leaves nothing
+/// in front is taken at once: on a convex patch every candidate is like that.
+fn choose_splitter(ids: &[u32], arena: &Arena, eps: f64) -> u32 {
+    let n = ids.len();
     if n <= 2 {
-        return 0;
+        return ids[0];
     }
     let step = n.div_ceil(SPLITTER_CANDIDATES).max(1);
-    let mut best = (usize::MAX, usize::MAX, 0);
+    let mut best = (usize::MAX, usize::MAX, ids[0]);
     for c in (0..n).step_by(step) {
-        let plane = polys[c].plane();
+        let plane = arena.polys[ids[c] as usize].plane();
         let (mut front, mut back, mut spanning) = (0usize, 0usize, 0usize);
-        for p in polys {
-            match p.side(plane, eps) {
+        for &id in ids {
+            match arena.polys[id as usize].side(plane, eps) {
                 Side::Front => front += 1,
                 Side::Back => back += 1,
                 Side::Spanning => spanning += 1,
                 Side::Coplanar => {}
             }
         }
-        let score = (spanning, front.abs_diff(back), c);
+        if spanning == 0 && front == 0 {
+            return ids[c];
+        }
+        let score = (spanning, front.abs_diff(back), ids[c]);
         if (score.0, score.1) < (best.0, best.1) {
             best = score;
         }
     }
     best.2
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gap_next_to_the_median() {
+        let mut v = vec![5.0, 1.0, 3.0, 3.0, 3.0, 2.0, 4.0];
+        assert_eq!(gap_near_median(&mut v, 0.5), Some(2.5));
+        let mut same = vec![1.0; 8];
+        assert_eq!(gap_near_median(&mut same, 0.5), None);
+    }
 }

@@ -2,9 +2,10 @@
 //! recursion, whole-fragment classification away from the surface, and a choice of which way
 //! coplanar polygons go.
 
+use glam::DVec3;
 use rayon::prelude::*;
 
-use super::{Kind, Label, Link, Tree};
+use super::{Kind, Label, Link, Surface, Tree};
 use crate::geom::Aabb;
 use crate::polygon::{Polygon, Split};
 
@@ -36,16 +37,28 @@ struct Work {
     bbox: Aabb,
     link: Link,
     coplanar: bool,
+    /// For a fragment routed as coplanar: the unit normal pointing to the side it was sent to.
+    /// It lies on the tree's surface, so a ray from it would be meaningless; the ray starts a
+    /// little way off on that side instead.
+    side: DVec3,
 }
 
 impl Tree {
     /// Clips `polygons` against the tree and keeps the fragments in regions labelled `keep`.
-    pub fn clip(&self, polygons: Vec<Polygon>, keep: Label, rule: Coplanar) -> Vec<Clipped> {
+    /// `surface` (the tree's solid) labels fragments whose point location ends in an unbuilt
+    /// cell.
+    pub fn clip(
+        &self,
+        polygons: Vec<Polygon>,
+        keep: Label,
+        rule: Coplanar,
+        surface: &Surface,
+    ) -> Vec<Clipped> {
         if polygons.len() < PARALLEL_MIN {
             let mut out = Vec::with_capacity(polygons.len());
             let mut stack = Vec::new();
             for p in polygons {
-                self.clip_one(p, keep, rule, &mut stack, &mut out);
+                self.clip_one(p, keep, rule, surface, &mut stack, &mut out);
             }
             return out;
         }
@@ -56,7 +69,7 @@ impl Tree {
                 let mut out = Vec::with_capacity(chunk.len());
                 let mut stack = Vec::new();
                 for p in chunk {
-                    self.clip_one(p, keep, rule, &mut stack, &mut out);
+                    self.clip_one(p, keep, rule, surface, &mut stack, &mut out);
                 }
                 out
             })
@@ -69,6 +82,7 @@ impl Tree {
         polygon: Polygon,
         keep: Label,
         rule: Coplanar,
+        surface: &Surface,
         stack: &mut Vec<Work>,
         out: &mut Vec<Clipped>,
     ) {
@@ -80,6 +94,7 @@ impl Tree {
             bbox,
             link: self.root,
             coplanar: false,
+            side: DVec3::ZERO,
         });
         while let Some(w) = stack.pop() {
             let i = match w.link {
@@ -95,9 +110,9 @@ impl Tree {
                 Link::Node(i) => i,
             };
             let node = &self.nodes[i as usize];
-            if !w.bbox.overlaps(&node.content, margin) {
+            if !w.bbox.overlaps(&node.content, margin) || matches!(node.kind, Kind::Stub) {
                 // No surface below this node comes near the fragment: it lies in one region.
-                if self.locate(w.link, w.polygon.centroid()) == keep {
+                if self.label_whole(&w, surface) == keep {
                     out.push(Clipped {
                         polygon: w.polygon,
                         coplanar: w.coplanar,
@@ -112,7 +127,7 @@ impl Tree {
                 && !self.near_surface(w.link, &w.bbox, margin)
             {
                 // Only the cell's box came near: classify whole rather than cut for nothing.
-                if self.locate(w.link, w.polygon.centroid()) == keep {
+                if self.label_whole(&w, surface) == keep {
                     out.push(Clipped {
                         polygon: w.polygon,
                         coplanar: w.coplanar,
@@ -137,9 +152,17 @@ impl Tree {
                     } else {
                         same
                     };
+                    let side = if !is_face {
+                        w.side
+                    } else if to_front {
+                        node.plane.normal
+                    } else {
+                        -node.plane.normal
+                    };
                     stack.push(Work {
                         link: if to_front { node.front } else { node.back },
                         coplanar: w.coplanar || is_face,
+                        side,
                         ..w
                     });
                 }
@@ -150,10 +173,20 @@ impl Tree {
                             polygon: piece,
                             link,
                             coplanar: w.coplanar,
+                            side: w.side,
                         });
                     }
                 }
             }
         }
+    }
+
+    /// The label of a fragment that no surface below its node comes near: by point location
+    /// in the tree, or where that ends in an unbuilt cell, by a ray from the centroid (moved off
+    /// the surface it was routed along, if any).
+    fn label_whole(&self, w: &Work, surface: &Surface) -> Label {
+        let c = w.polygon.centroid();
+        self.locate(w.link, c)
+            .unwrap_or_else(|| surface.label(c + w.side * (2.0 * self.eps)))
     }
 }

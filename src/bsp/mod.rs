@@ -22,8 +22,11 @@
 
 mod build;
 mod clip;
+mod surface;
 
+pub(crate) use build::FOCUS_MARGIN;
 pub(crate) use clip::Coplanar;
+pub(crate) use surface::Surface;
 
 use crate::geom::{Aabb, Plane};
 use crate::polygon::Polygon;
@@ -48,6 +51,9 @@ pub(crate) enum Kind {
     Cell,
     /// The plane of the polygons `tree.polygons[start..end]`, all coplanar with it.
     Face { start: u32, end: u32 },
+    /// A cell left unbuilt because nothing to be clipped can reach it (see
+    /// [`Tree::build_focused`]); `content` still bounds its polygons. Plane and links are unused.
+    Stub,
 }
 
 #[derive(Clone, Debug)]
@@ -73,15 +79,18 @@ pub(crate) struct Tree {
 }
 
 impl Tree {
-    /// The label of the region holding `p`, starting at `link`. Meant for points away from the
-    /// polygons below `link`; a point on a plane that carries no polygon nearby sees the same
-    /// label on both sides.
-    pub fn locate(&self, mut link: Link, p: glam::DVec3) -> Label {
+    /// The label of the region holding `p`, starting at `link`, or `None` where the walk ends
+    /// in an unbuilt cell. Meant for points away from the polygons below `link`; a point on a
+    /// plane that carries no polygon nearby sees the same label on both sides.
+    pub fn locate(&self, mut link: Link, p: glam::DVec3) -> Option<Label> {
         loop {
             match link {
-                Link::Leaf(label) => return label,
+                Link::Leaf(label) => return Some(label),
                 Link::Node(i) => {
                     let node = &self.nodes[i as usize];
+                    if matches!(node.kind, Kind::Stub) {
+                        return None;
+                    }
                     link = if node.plane.distance(p) >= 0.0 {
                         node.front
                     } else {
@@ -101,6 +110,9 @@ impl Tree {
             if !bbox.overlaps(&node.content, margin) {
                 continue;
             }
+            if matches!(node.kind, Kind::Stub) {
+                return true;
+            }
             if bbox.overlaps(&node.own, margin)
                 && self
                     .face_polygons(node)
@@ -119,7 +131,7 @@ impl Tree {
     pub fn face_polygons(&self, node: &Node) -> &[Polygon] {
         match node.kind {
             Kind::Face { start, end } => &self.polygons[start as usize..end as usize],
-            Kind::Cell => &[],
+            Kind::Cell | Kind::Stub => &[],
         }
     }
 
@@ -132,6 +144,9 @@ impl Tree {
             deepest = deepest.max(d);
             if let Link::Node(i) = link {
                 let n = &self.nodes[i as usize];
+                if matches!(n.kind, Kind::Stub) {
+                    continue;
+                }
                 stack.push((n.front, d + 1));
                 stack.push((n.back, d + 1));
             }

@@ -1,6 +1,7 @@
 //! Basic geometry: boxes, planes and the tolerance that classifies points against planes.
 
 mod aabb;
+pub(crate) mod bvh;
 mod plane;
 mod tolerance;
 

@@ -1,0 +1,161 @@
+//! An operand's surface as a polygon set with a BVH: which polygons of the other operand come
+//! near it, and whether a point away from it is inside (ray parity).
+
+use glam::DVec3;
+
+use super::Label;
+use crate::geom::Aabb;
+use crate::geom::bvh::Bvh;
+use crate::polygon::Polygon;
+
+/// Ray directions for parity counting, away from any axis or diagonal so that rays rarely
+/// graze the edges of axis-aligned or symmetric models; tried in turn when one grazes.
+const DIRECTIONS: [[f64; 3]; 6] = [
+    [0.5773, 0.6124, 0.5404],
+    [-0.7061, 0.3162, 0.6335],
+    [0.2673, -0.8018, 0.5345],
+    [0.8944, 0.2981, -0.3333],
+    [-0.3015, -0.4523, -0.8392],
+    [0.1104, 0.9901, 0.0868],
+];
+
+pub(crate) struct Surface<'a> {
+    polygons: &'a [Polygon],
+    boxes: Vec<Aabb>,
+    bvh: Bvh,
+    eps: f64,
+}
+
+enum Crossing {
+    Miss,
+    Hit,
+    /// The ray passes within tolerance of an edge or runs in the polygon's plane.
+    Graze,
+}
+
+impl<'a> Surface<'a> {
+    pub fn new(polygons: &'a [Polygon], eps: f64) -> Self {
+        let boxes: Vec<Aabb> = polygons.iter().map(Polygon::bbox).collect();
+        let bvh = Bvh::build(&boxes);
+        Surface {
+            polygons,
+            boxes,
+            bvh,
+            eps,
+        }
+    }
+
+    /// True when a polygon's box comes within `margin` of `bbox`.
+    pub fn near(&self, bbox: &Aabb, margin: f64) -> bool {
+        self.bvh.any_overlap(&self.boxes, bbox, margin)
+    }
+
+    /// Inside or outside, for a point away from the surface (farther than the tolerance), by
+    /// counting crossings of a ray; a ray that grazes an edge is retried in another direction.
+    /// The generalised winding number settles the (rare) point whose every ray grazes.
+    pub fn label(&self, p: DVec3) -> Label {
+        'directions: for d in DIRECTIONS {
+            let dir = DVec3::from(d).normalize();
+            let mut crossings = 0u32;
+            let mut grazed = false;
+            self.bvh.ray(p, dir, |i| {
+                match crossing(&self.polygons[i as usize], p, dir, self.eps) {
+                    Crossing::Miss => {}
+                    Crossing::Hit => crossings += 1,
+                    Crossing::Graze => grazed = true,
+                }
+                grazed
+            });
+            if grazed {
+                continue 'directions;
+            }
+            return if crossings % 2 == 1 {
+                Label::Inside
+            } else {
+                Label::Outside
+            };
+        }
+        self.winding_label(p)
+    }
+
+    /// Inside when the generalised winding number is above one half.
+    fn winding_label(&self, p: DVec3) -> Label {
+        let mut total = 0.0;
+        for poly in self.polygons {
+            for [a, b, c] in poly.fan() {
+                total += solid_angle(a - p, b - p, c - p);
+            }
+        }
+        if total / (4.0 * std::f64::consts::PI) > 0.5 {
+            Label::Inside
+        } else {
+            Label::Outside
+        }
+    }
+}
+
+/// Whether the ray from `origin` along `dir` crosses the polygon's interior.
+fn crossing(poly: &Polygon, origin: DVec3, dir: DVec3, eps: f64) -> Crossing {
+    let plane = poly.plane();
+    let denom = plane.normal.dot(dir);
+    let d0 = plane.distance(origin);
+    if denom.abs() < 1e-9 {
+        return if d0.abs() <= eps {
+            Crossing::Graze
+        } else {
+            Crossing::Miss
+        };
+    }
+    let t = -d0 / denom;
+    if t < 0.0 {
+        return Crossing::Miss;
+    }
+    let hit = origin + dir * t;
+    let v = poly.vertices();
+    let mut inner = f64::INFINITY;
+    for i in 0..v.len() {
+        let (a, b) = (v[i], v[(i + 1) % v.len()]);
+        let edge = b - a;
+        let len = edge.length();
+        if len == 0.0 {
+            continue;
+        }
+        inner = inner.min(edge.cross(hit - a).dot(plane.normal) / len);
+    }
+    if inner > eps {
+        Crossing::Hit
+    } else if inner < -eps {
+        Crossing::Miss
+    } else {
+        Crossing::Graze
+    }
+}
+
+/// The signed solid angle of triangle `abc` seen from the origin (Van Oosterom–Strackee).
+fn solid_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
+    let (la, lb, lc) = (a.length(), b.length(), c.length());
+    let num = a.dot(b.cross(c));
+    let den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+    2.0 * num.atan2(den)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solid::Solid;
+
+    #[test]
+    fn parity_and_winding_agree_on_a_torus() {
+        let t = Solid::torus(1.0, 0.3, 32, 16).unwrap();
+        let s = Surface::new(t.polygons(), 1e-9);
+        for (p, want) in [
+            (DVec3::new(1.0, 0.0, 0.0), Label::Inside),
+            (DVec3::ZERO, Label::Outside),
+            (DVec3::new(0.0, 0.1, -1.05), Label::Inside),
+            (DVec3::new(2.0, 0.0, 0.0), Label::Outside),
+        ] {
+            assert_eq!(s.label(p), want, "{p}");
+            assert_eq!(s.winding_label(p), want, "{p}");
+        }
+    }
+}

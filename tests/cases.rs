@@ -1,0 +1,41 @@
+//! Larger cases with known answers: the Menger sponge, a block with a grid of holes.
+
+#[path = "../benches/common/cases.rs"]
+mod cases;
+
+use approx::assert_relative_eq;
+use bspcsg::Solid;
+
+#[test]
+fn menger_sponge_volumes() {
+    for depth in 1..=3 {
+        let sponge = cases::menger_sponge(depth);
+        assert_relative_eq!(
+            sponge.volume(),
+            (20.0f64 / 27.0).powi(depth as i32),
+            max_relative = 1e-12
+        );
+    }
+}
+
+#[test]
+fn sequential_and_balanced_unions_agree() {
+    let bars = cases::menger_bars(2);
+    let sequential = bars.iter().fold(Solid::empty(), |acc, b| &acc | b);
+    let balanced = Solid::union_all(bars);
+    assert_relative_eq!(sequential.volume(), balanced.volume(), max_relative = 1e-12);
+}
+
+#[test]
+fn block_minus_grid_of_cylinders() {
+    let segments = 32;
+    let (block, holes) = cases::block_and_holes(segments);
+    let n = segments as f64;
+    let hole_area = 0.5 * n * 0.3 * 0.3 * (std::f64::consts::TAU / n).sin();
+    let part = &block - &holes;
+    assert_relative_eq!(
+        part.volume(),
+        100.0 - 100.0 * hole_area,
+        max_relative = 1e-12
+    );
+}
