@@ -593,3 +593,113 @@ fn model_reports_print() {
         println!("{name}: {r}");
     }
 }
+
+// ---- Merging coplanar triangles ----
+
+fn merged(m: &Mesh) -> Solid {
+    let options = FromMeshOptions::default().with_merge_coplanar(true);
+    Solid::from_mesh_with(m, &options).unwrap()
+}
+
+#[test]
+fn merge_restores_the_polygons_of_primitives() {
+    for s in [
+        Solid::cube(1.0).unwrap(),
+        Solid::cylinder(1.0, 2.0, 30).unwrap(),
+        Solid::cone(1.0, 2.0, 7).unwrap(),
+        Solid::sphere(1.0, 16, 8).unwrap(),
+        Solid::torus(2.0, 0.5, 16, 8).unwrap(),
+    ] {
+        let mesh = s.to_mesh();
+        let back = merged(&mesh);
+        assert_eq!(back.polygon_count(), s.polygon_count());
+        assert_relative_eq!(back.volume(), s.volume(), max_relative = 1e-12);
+        assert_relative_eq!(back.area(), s.area(), max_relative = 1e-12);
+        // The same vertices and edges: meshing it again gives a closed manifold.
+        let again = back.to_mesh();
+        assert_eq!(again.positions.len(), mesh.positions.len());
+        assert!(again.report().is_closed_manifold());
+    }
+}
+
+#[test]
+fn merge_respects_sources() {
+    let mut m = cube_mesh();
+    for (t, s) in m.sources.iter_mut().enumerate() {
+        *s = t as u32;
+    }
+    assert_eq!(merged(&m).polygon_count(), 12);
+}
+
+#[test]
+fn merge_keeps_convexity() {
+    // An L-shaped prism: its L faces need at least two convex pieces each.
+    let mut v = Vec::new();
+    for z in [0.0, 1.0] {
+        for (x, y) in [(0., 0.), (2., 0.), (2., 1.), (1., 1.), (1., 2.), (0., 2.)] {
+            v.push(DVec3::new(x, y, z));
+        }
+    }
+    let bottom: Vec<u32> = (0..6).rev().collect();
+    let top: Vec<u32> = (6..12).collect();
+    let mut faces = vec![bottom, top];
+    for i in 0..6 {
+        let j = (i + 1) % 6;
+        faces.push(vec![i, j, j + 6, i + 6]);
+    }
+    let l = Solid::polyhedron(&v, &faces).unwrap();
+    let back = merged(&l.to_mesh());
+    assert_eq!(back.polygon_count(), 6 + 2 * 2);
+    for p in back.polygons() {
+        let vs = p.vertices();
+        for k in 0..vs.len() {
+            let (a, b, c) = (vs[k], vs[(k + 1) % vs.len()], vs[(k + 2) % vs.len()]);
+            assert!(
+                (b - a).cross(c - b).dot(p.plane().normal) > 0.0,
+                "not convex: {vs:?}"
+            );
+        }
+    }
+    assert_relative_eq!(back.volume(), 3.0, max_relative = 1e-12);
+    let cut = &back - &Solid::cube(1.0).unwrap();
+    assert_relative_eq!(cut.volume(), 3.0 - 0.125, max_relative = 1e-12);
+}
+
+#[test]
+fn merge_on_models() {
+    for name in [
+        "fandisk.obj",
+        "rocker-arm.obj",
+        "Havocglass8_left.obj",
+        "Cray_left.obj",
+    ] {
+        let Some(m) = load_obj(name) else { return };
+        let plain = Solid::from_mesh(&m).unwrap();
+        let back = merged(&m);
+        println!(
+            "{name}: {} triangles -> {} polygons",
+            m.triangles.len(),
+            back.polygon_count()
+        );
+        assert!(back.polygon_count() <= plain.polygon_count());
+        assert_relative_eq!(back.volume(), plain.volume(), max_relative = 1e-12);
+        assert_relative_eq!(back.area(), plain.area(), max_relative = 1e-12);
+        assert!(back.to_mesh().report().closed);
+    }
+}
+
+#[test]
+fn merge_on_bad_models_is_lenient_too() {
+    for name in [
+        "openscad-nonmanifold-crash.obj",
+        "boxNotManifold.obj",
+        "stanford-bunny.obj",
+    ] {
+        let Some(m) = load_obj(name) else { return };
+        let lenient = FromMeshOptions::lenient();
+        let plain = Solid::from_mesh_with(&m, &lenient).unwrap();
+        let back = Solid::from_mesh_with(&m, &lenient.with_merge_coplanar(true)).unwrap();
+        assert!(back.polygon_count() <= plain.polygon_count());
+        assert_relative_eq!(back.volume(), plain.volume(), max_relative = 1e-12);
+    }
+}
