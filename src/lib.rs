@@ -57,7 +57,7 @@ mod solid;
 pub use boolean::{BoolOp, boolean};
 pub use error::{Error, Result};
 pub use geom::{Aabb, Plane, Side, Tolerance};
-pub use mesh::{Material, Mesh};
+pub use mesh::{FromMeshOptions, Material, Mesh, MeshReport, ShellReport};
 pub use polygon::Polygon;
 pub use primitives::{MAX_SEGMENTS, MIN_SEGMENTS, segments_for_tolerance};
 pub use solid::{Containment, PointClassifier, Solid};

@@ -91,5 +91,10 @@ impl Mesh {
     }
 }
 
+mod import;
 pub(crate) mod triangulate;
+pub(crate) mod validate;
 pub(crate) mod weld;
+
+pub use import::FromMeshOptions;
+pub use validate::{MeshReport, ShellReport};

@@ -1,10 +1,9 @@
-use std::collections::HashMap;
-
 use glam::DVec3;
 
 use crate::error::{Error, Result};
 use crate::geom::{Plane, Tolerance};
 use crate::mesh::triangulate::{ear_clip, project};
+use crate::mesh::validate;
 use crate::polygon::Polygon;
 use crate::solid::Solid;
 
@@ -24,7 +23,12 @@ impl Solid {
     /// assert!((tetra.volume() - 1.0 / 6.0).abs() < 1e-12);
     /// ```
     pub fn polyhedron<F: AsRef<[u32]>>(vertices: &[DVec3], faces: &[F]) -> Result<Solid> {
-        check_indexed(vertices, faces)?;
+        if faces.is_empty() {
+            return Err(Error::InvalidMesh("no faces".into()));
+        }
+        validate::check_finite(vertices, |_| true)?;
+        validate::check_face_indices(faces, vertices.len(), false)?;
+        validate::check_closed(faces)?;
         let eps = Tolerance::for_region(&crate::geom::Aabb::from_points(vertices)).eps();
         let mut polygons = Vec::with_capacity(faces.len());
         for (fi, f) in faces.iter().enumerate() {
@@ -58,62 +62,4 @@ fn is_planar_convex(pts: &[DVec3], plane: &Plane, eps: f64) -> bool {
             let (a, b, c) = (pts[i], pts[(i + 1) % n], pts[(i + 2) % n]);
             (b - a).cross(c - b).dot(plane.normal) > 0.0
         })
-}
-
-/// Checks indexed faces for finiteness, index range, repeats and closure.
-pub(crate) fn check_indexed<F: AsRef<[u32]>>(vertices: &[DVec3], faces: &[F]) -> Result<()> {
-    if let Some(i) = vertices.iter().position(|v| !v.is_finite()) {
-        return Err(Error::InvalidMesh(format!(
-            "vertex {i} has a non-finite coordinate: {}",
-            vertices[i]
-        )));
-    }
-    if faces.is_empty() {
-        return Err(Error::InvalidMesh("no faces".into()));
-    }
-    let mut directed: HashMap<(u32, u32), u32> = HashMap::new();
-    for (fi, f) in faces.iter().enumerate() {
-        let f = f.as_ref();
-        if f.len() < 3 {
-            return Err(Error::InvalidMesh(format!(
-                "face {fi} has {} indices; a face needs at least 3",
-                f.len()
-            )));
-        }
-        if let Some(&bad) = f.iter().find(|&&i| i as usize >= vertices.len()) {
-            return Err(Error::InvalidMesh(format!(
-                "face {fi} uses vertex index {bad}, but there are only {} vertices",
-                vertices.len()
-            )));
-        }
-        for (k, &i) in f.iter().enumerate() {
-            if f[k + 1..].contains(&i) {
-                return Err(Error::InvalidMesh(format!(
-                    "face {fi} repeats vertex index {i}"
-                )));
-            }
-        }
-        for k in 0..f.len() {
-            *directed.entry((f[k], f[(k + 1) % f.len()])).or_default() += 1;
-        }
-    }
-    let (mut boundary, mut overused, mut misoriented) = (0usize, 0usize, 0usize);
-    for (&(a, b), &uses) in &directed {
-        let back = directed.get(&(b, a)).copied().unwrap_or(0);
-        if uses > 1 {
-            overused += 1;
-        } else if back == 0 {
-            boundary += 1;
-        }
-        if uses == 1 && back > 1 {
-            misoriented += 1;
-        }
-    }
-    if boundary + overused + misoriented > 0 {
-        return Err(Error::InvalidMesh(format!(
-            "not closed: {boundary} boundary edges, {overused} edges used more than once in one \
-             direction (non-manifold or inconsistently oriented faces)"
-        )));
-    }
-    Ok(())
 }
