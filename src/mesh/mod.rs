@@ -92,6 +92,7 @@ impl Mesh {
 }
 
 mod import;
+pub(crate) mod repair;
 pub(crate) mod triangulate;
 pub(crate) mod validate;
 pub(crate) mod weld;

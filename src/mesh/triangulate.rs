@@ -1,6 +1,135 @@
-//! Triangulation of simple planar polygons by ear clipping.
+//! Triangulation of planar regions: constrained Delaunay triangulation of a region's directed
+//! boundary edges, and ear clipping of simple polygons as the fallback.
 
 use glam::{DVec2, DVec3};
+use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
+
+use super::weld::FxHashMap;
+
+/// Triangulates the region of a plane lying to the left of its directed boundary `edges`
+/// (counter-clockwise outer loops, clockwise holes, seen from the front of `normal`), using only
+/// the boundary's vertices. Triangles come back counter-clockwise as vertex indices.
+///
+/// Constrained Delaunay triangulation never makes a zero-area triangle and needs no vertex
+/// beyond the boundary's. `None` when the boundary is not a valid region: edges that cross,
+/// vertices that coincide in the plane, or a face that lies left of one edge and right of
+/// another.
+pub(crate) fn triangulate_boundary(
+    positions: &[DVec3],
+    normal: DVec3,
+    edges: &[(u32, u32)],
+) -> Option<Vec<[u32; 3]>> {
+    if edges.len() < 3 {
+        return if edges.is_empty() {
+            Some(Vec::new())
+        } else {
+            None
+        };
+    }
+    let mut ids: Vec<u32> = edges.iter().flat_map(|&(a, b)| [a, b]).collect();
+    ids.sort_unstable();
+    ids.dedup();
+    let local: FxHashMap<u32, usize> = ids.iter().enumerate().map(|(k, &i)| (i, k)).collect();
+    let pts3: Vec<DVec3> = ids.iter().map(|&i| positions[i as usize]).collect();
+    let pts2 = project(&pts3, normal);
+    // Move to the unit square: spade accepts a bounded range of magnitudes.
+    let lo = pts2.iter().copied().fold(DVec2::INFINITY, DVec2::min);
+    let hi = pts2.iter().copied().fold(DVec2::NEG_INFINITY, DVec2::max);
+    let extent = (hi - lo).max_element();
+    if !(extent.is_finite() && extent > 0.0) {
+        return None;
+    }
+    let vertices: Vec<Point2<f64>> = pts2
+        .iter()
+        .map(|p| {
+            let q = (*p - lo) / extent;
+            spade::mitigate_underflow(Point2::new(q.x, q.y))
+        })
+        .collect();
+    let constraint_list: Vec<[usize; 2]> =
+        edges.iter().map(|&(a, b)| [local[&a], local[&b]]).collect();
+    let mut conflicts = 0usize;
+    let cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
+        ConstrainedDelaunayTriangulation::try_bulk_load_cdt(
+            vertices,
+            constraint_list.clone(),
+            |_| conflicts += 1,
+        )
+        .ok()?;
+    if conflicts > 0 || cdt.num_vertices() != ids.len() {
+        return None;
+    }
+    // Faces left of a boundary edge are inside, right of it outside; the rest take the label
+    // of a neighbour across a non-boundary edge.
+    let mut label: Vec<i8> = vec![0; cdt.num_all_faces()];
+    let mut queue = Vec::new();
+    let handles: Vec<_> = cdt.fixed_vertices().collect();
+    for [a, b] in constraint_list {
+        let edge = cdt.get_edge_from_neighbors(handles[a], handles[b])?;
+        for (face, value) in [(edge.face(), 1i8), (edge.rev().face(), -1i8)] {
+            if let Some(inner) = face.as_inner() {
+                let k = inner.fix().index();
+                if label[k] == -value {
+                    return None;
+                }
+                if label[k] == 0 {
+                    label[k] = value;
+                    queue.push(inner.fix());
+                }
+            }
+        }
+    }
+    while let Some(f) = queue.pop() {
+        let value = label[f.index()];
+        for e in cdt.face(f).adjacent_edges() {
+            if cdt.is_constraint_edge(e.as_undirected().fix()) {
+                continue;
+            }
+            if let Some(next) = e.rev().face().as_inner()
+                && label[next.fix().index()] == 0
+            {
+                label[next.fix().index()] = value;
+                queue.push(next.fix());
+            }
+        }
+    }
+    let triangles = cdt
+        .inner_faces()
+        .filter(|f| label[f.fix().index()] == 1)
+        .map(|f| f.vertices().map(|v| ids[v.fix().index()]))
+        .collect();
+    Some(triangles)
+}
+
+/// The last resort for a region spade could not take: its boundary chained into one loop and
+/// ear-clipped. Nothing for boundaries that are not one simple loop.
+pub(crate) fn ear_clip_boundary(
+    positions: &[DVec3],
+    normal: DVec3,
+    edges: &[(u32, u32)],
+) -> Vec<[u32; 3]> {
+    let next: FxHashMap<u32, u32> = edges.iter().copied().collect();
+    if next.len() != edges.len() || edges.is_empty() {
+        return Vec::new();
+    }
+    let mut ring = vec![edges[0].0];
+    while ring.len() <= edges.len() {
+        let Some(&n) = next.get(ring.last().expect("ring starts non-empty")) else {
+            return Vec::new();
+        };
+        if n == ring[0] {
+            break;
+        }
+        ring.push(n);
+    }
+    if ring.len() != edges.len() {
+        return Vec::new();
+    }
+    let pts: Vec<DVec3> = ring.iter().map(|&i| positions[i as usize]).collect();
+    ear_clip(&project(&pts, normal))
+        .map(|tris| tris.into_iter().map(|t| t.map(|k| ring[k])).collect())
+        .unwrap_or_default()
+}
 
 /// Projects points of a plane with `normal` to 2D, dropping the normal's dominant axis and
 /// keeping the winding (counter-clockwise seen from the front stays counter-clockwise).

@@ -4,6 +4,7 @@ use std::collections::HashMap;
 use std::hash::BuildHasherDefault;
 
 use glam::DVec3;
+use smallvec::SmallVec;
 
 use super::Mesh;
 use crate::solid::Solid;
@@ -68,9 +69,18 @@ impl Welder {
 }
 
 impl Solid {
-    /// The solid as an indexed triangle mesh: positions welded bit for bit, each polygon
-    /// fanned into triangles, each triangle carrying its polygon's source id.
+    /// The solid as an indexed triangle mesh that is a closed 2-manifold whenever the solid is
+    /// closed: vertices welded, T-junctions removed, coplanar fragments of one source merged and
+    /// triangulated without zero-area triangles, and solids that touch along an edge or at a
+    /// vertex returned as separate manifold shells. Each triangle carries its polygon's source
+    /// id. See [`Solid::to_mesh_unrepaired`] for the plain fan triangulation.
     pub fn to_mesh(&self) -> Mesh {
+        super::repair::polygons_to_mesh(self.polygons(), self.tolerance().eps())
+    }
+
+    /// Each polygon fanned into triangles, positions welded bit for bit and nothing else:
+    /// after a boolean this has T-junctions. For inspecting what a boolean produced.
+    pub fn to_mesh_unrepaired(&self) -> Mesh {
         let mut welder = Welder::with_capacity(self.corner_count() / 2);
         let mut triangles = Vec::with_capacity(self.corner_count());
         let mut sources = Vec::with_capacity(self.corner_count());
@@ -90,4 +100,58 @@ impl Solid {
             sources,
         }
     }
+}
+
+/// Welds points within `delta` of each other: each point maps to the first earlier
+/// representative within `delta`, or becomes one. Representatives are more than `delta` apart,
+/// so clusters cannot chain along a line of close points. Returns the representatives and, for
+/// each input point, its representative's index.
+pub(crate) fn weld_within(points: &[DVec3], delta: f64) -> (Vec<DVec3>, Vec<u32>) {
+    let mut exact = Welder::with_capacity(points.len());
+    let first: Vec<u32> = points.iter().map(|&p| exact.index(p)).collect();
+    if delta <= 0.0 {
+        return (exact.positions, first);
+    }
+    // Cells of size `delta`: a representative within `delta` lies in one of the 27 around.
+    let cell = |p: DVec3| -> [i64; 3] {
+        // `as` saturates, so coordinates beyond the i64 range share the outermost cells.
+        let c = (p / delta).floor();
+        [c.x as i64, c.y as i64, c.z as i64]
+    };
+    let mut grid: FxHashMap<[i64; 3], SmallVec<[u32; 2]>> =
+        FxHashMap::with_capacity_and_hasher(exact.positions.len(), FxBuild::default());
+    let mut reps: Vec<DVec3> = Vec::with_capacity(exact.positions.len());
+    let mut rep_of: Vec<u32> = Vec::with_capacity(exact.positions.len());
+    for &p in &exact.positions {
+        let c = cell(p);
+        let mut found = None;
+        'search: for dx in -1..=1i64 {
+            for dy in -1..=1i64 {
+                for dz in -1..=1i64 {
+                    let k = [
+                        c[0].saturating_add(dx),
+                        c[1].saturating_add(dy),
+                        c[2].saturating_add(dz),
+                    ];
+                    if let Some(list) = grid.get(&k)
+                        && let Some(&r) = list
+                            .iter()
+                            .find(|&&r| reps[r as usize].distance(p) <= delta)
+                    {
+                        found = Some(r);
+                        break 'search;
+                    }
+                }
+            }
+        }
+        let r = found.unwrap_or_else(|| {
+            reps.push(p);
+            let r = (reps.len() - 1) as u32;
+            grid.entry(c).or_default().push(r);
+            r
+        });
+        rep_of.push(r);
+    }
+    let map = first.into_iter().map(|i| rep_of[i as usize]).collect();
+    (reps, map)
 }

@@ -1,0 +1,90 @@
+//! Turning a boolean's polygon soup into a closed 2-manifold triangle mesh.
+//!
+//! A BSP boolean leaves T-junctions (a split polygon's new vertex lies in the middle of a
+//! neighbour's edge), near-duplicate vertices (the same point computed along two paths) and
+//! many coplanar slivers. The steps, each in its own module:
+//!
+//! 1. **Weld** positions within `δ` (a few plane tolerances) and drop polygons that collapse.
+//! 2. **T-junctions**: every vertex within `δ` of another polygon's edge is inserted into it
+//!    ([`tjunction`]). Now every edge is used by both polygons beside it.
+//! 3. **Regions**: edge-adjacent polygons of one source in one plane merge; their shared edges
+//!    cancel, leaving each region's boundary. A vertex that only passes straight through on
+//!    every boundary it lies on is dropped from all of them at once, so neighbours stay matched
+//!    ([`regions`]).
+//! 4. **Triangulate** each region by constrained Delaunay triangulation of its boundary: no
+//!    zero-area triangles, no new vertices (`mesh::triangulate`). A region whose boundary crosses
+//!    itself keeps its polygons instead.
+//! 5. **Shells**: half-edges are paired (around an edge shared by more than two triangles, by
+//!    angle, so each pair encloses solid) and every vertex is split into one copy per fan of
+//!    triangles around it. Solids touching along an edge or at a vertex come out as separate
+//!    manifold shells ([`shells`]).
+
+mod regions;
+mod shells;
+mod tjunction;
+
+use glam::DVec3;
+use smallvec::SmallVec;
+
+use super::Mesh;
+use super::weld::weld_within;
+use crate::polygon::Polygon;
+
+/// Positions closer than this many plane tolerances are one vertex; a vertex this close to an
+/// edge lies on it.
+pub(crate) const WELD_TOLERANCES: f64 = 8.0;
+
+/// A polygon as a ring of welded vertex indices, with the polygon it came from.
+#[derive(Clone, Debug)]
+pub(crate) struct Ring {
+    pub verts: SmallVec<[u32; 8]>,
+    pub polygon: u32,
+}
+
+/// The repaired mesh of a closed polygon soup whose booleans used plane tolerance `eps`.
+pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64) -> Mesh {
+    if polygons.is_empty() {
+        return Mesh::default();
+    }
+    let delta = WELD_TOLERANCES * eps;
+    let corners: Vec<DVec3> = polygons
+        .iter()
+        .flat_map(|p| p.vertices().iter().copied())
+        .collect();
+    let (positions, map) = weld_within(&corners, delta);
+    let mut rings = Vec::with_capacity(polygons.len());
+    let mut at = 0usize;
+    for (i, p) in polygons.iter().enumerate() {
+        let n = p.vertices().len();
+        let mut verts: SmallVec<[u32; 8]> = map[at..at + n].iter().copied().collect();
+        at += n;
+        verts.dedup();
+        while verts.len() > 1 && verts.first() == verts.last() {
+            verts.pop();
+        }
+        if verts.len() >= 3 && spans_area(&positions, &verts, p, delta) {
+            rings.push(Ring {
+                verts,
+                polygon: i as u32,
+            });
+        }
+    }
+    tjunction::insert_on_edges(&positions, &mut rings, delta);
+    let triangles = regions::triangulate_regions(&positions, &rings, polygons, delta);
+    shells::split_into_shells(positions, triangles)
+}
+
+/// False when welding collapsed the ring onto a line (width below `delta` everywhere).
+fn spans_area(positions: &[DVec3], verts: &[u32], polygon: &Polygon, delta: f64) -> bool {
+    let n = polygon.plane().normal;
+    let v: Vec<DVec3> = verts.iter().map(|&i| positions[i as usize]).collect();
+    // Twice the area over the longest edge bounds the ring's width from below.
+    let mut twice_area = 0.0;
+    let mut longest: f64 = 0.0;
+    for i in 0..v.len() {
+        let (a, b) = (v[i], v[(i + 1) % v.len()]);
+        twice_area += (a - v[0]).cross(b - v[0]).dot(n);
+        longest = longest.max(a.distance(b));
+    }
+    longest > 0.0 && twice_area / longest > delta * 1e-3
+}

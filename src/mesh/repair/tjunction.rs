@@ -1,0 +1,53 @@
+//! Inserting vertices that lie on an edge into that edge.
+
+use glam::DVec3;
+use rayon::prelude::*;
+use smallvec::SmallVec;
+
+use super::Ring;
+use crate::geom::Aabb;
+use crate::geom::bvh::Bvh;
+
+/// Inserts into every ring edge, in order along it, each vertex within `delta` of the edge's
+/// interior (and farther than `delta` from its ends). `O((E + k) log V)` with a BVH over the
+/// vertices.
+pub(super) fn insert_on_edges(positions: &[DVec3], rings: &mut [Ring], delta: f64) {
+    let boxes: Vec<Aabb> = positions.iter().map(|&p| Aabb::new(p, p)).collect();
+    let bvh = Bvh::build(&boxes);
+    rings.par_iter_mut().with_min_len(64).for_each(|ring| {
+        let n = ring.verts.len();
+        let mut out: SmallVec<[u32; 8]> = SmallVec::with_capacity(n);
+        let mut on_edge: Vec<(f64, u32)> = Vec::new();
+        for k in 0..n {
+            let (ia, ib) = (ring.verts[k], ring.verts[(k + 1) % n]);
+            let (a, b) = (positions[ia as usize], positions[ib as usize]);
+            out.push(ia);
+            let d = b - a;
+            let len2 = d.length_squared();
+            if len2 == 0.0 {
+                continue;
+            }
+            let query = Aabb::new(a.min(b), a.max(b));
+            on_edge.clear();
+            bvh.visit(
+                |bx| bx.overlaps(&query, delta),
+                |w| {
+                    if w != ia && w != ib {
+                        let p = positions[w as usize];
+                        let t = (p - a).dot(d) / len2;
+                        let along = t * len2.sqrt();
+                        let len = len2.sqrt();
+                        if along > delta && along < len - delta && (a + d * t).distance(p) <= delta
+                        {
+                            on_edge.push((t, w));
+                        }
+                    }
+                    false
+                },
+            );
+            on_edge.sort_by(|x, y| x.0.total_cmp(&y.0));
+            out.extend(on_edge.iter().map(|&(_, w)| w));
+        }
+        ring.verts = out;
+    });
+}
