@@ -47,6 +47,26 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh> {
             message: format!("glTF extension `{ext}` is required but not supported"),
         });
     }
+    // gltf-json 1.4.1's validation indexes the POSITION accessor before it checks indices
+    // are in range (a panic on `"POSITION": 7` with fewer accessors), so check that first.
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            if let Some(acc) = prim.attributes.get(&Valid(json::mesh::Semantic::Positions)) {
+                if acc.value() >= root.accessors.len() {
+                    return Err(parse_error(
+                        path,
+                        None,
+                        format!(
+                            "invalid glTF: meshes[{m}].primitives[{p}] POSITION refers to \
+                             accessor {}, but there are {}",
+                            acc.value(),
+                            root.accessors.len()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
     let doc = gltf::Document::from_json(root).map_err(|e| {
         let message = match e {
             gltf::Error::Validation(errors) => {
@@ -832,4 +852,46 @@ fn glb_bytes(mut json: Vec<u8>, bin: Option<Vec<u8>>) -> Option<Vec<u8>> {
         out.extend_from_slice(&b);
     }
     Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(json: &str) -> Result<Mesh> {
+        read(Path::new("t.gltf"), json.as_bytes())
+    }
+
+    /// Found by mutating written files: gltf-json's validation panicked on this.
+    #[test]
+    fn position_accessor_out_of_range_is_an_error() {
+        let e = parse(
+            r#"{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}]}"#,
+        );
+        assert!(matches!(e, Err(Error::Parse { .. })), "{e:?}");
+    }
+
+    #[test]
+    fn glb_header_shorter_than_itself() {
+        let mut b = b"glTF".to_vec();
+        b.extend_from_slice(&2u32.to_le_bytes());
+        b.extend_from_slice(&4u32.to_le_bytes());
+        assert!(read(Path::new("t.glb"), &b).is_err());
+    }
+
+    #[test]
+    fn percent_coding() {
+        assert_eq!(percent_encode("a b%.bin"), "a%20b%25.bin");
+        assert_eq!(percent_decode("a%20b%25.bin").as_deref(), Some("a b%.bin"));
+        assert_eq!(percent_decode("a%2"), None);
+        assert_eq!(percent_decode("a%zz"), None);
+        assert_eq!(percent_decode("%FF"), None);
+    }
+
+    #[test]
+    fn read_uint_widths() {
+        assert_eq!(read_uint(&[0x12]), 0x12);
+        assert_eq!(read_uint(&[0x34, 0x12]), 0x1234);
+        assert_eq!(read_uint(&[0x78, 0x56, 0x34, 0x12]), 0x1234_5678);
+    }
 }
