@@ -1,0 +1,389 @@
+//! Reading and writing mesh files: OBJ, STL and glTF 2.0 (`.gltf` + `.bin`, and `.glb`).
+//!
+//! Readers return one welded [`Mesh`] (bit-identical positions become one vertex) with every
+//! triangle's source id 0. Writers replace their output atomically: everything is written to
+//! temporary files beside the destination, which are renamed into place only once complete.
+
+use std::fmt;
+use std::fs;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use crate::error::{Error, Result};
+use crate::mesh::{Material, Mesh};
+
+mod gltf;
+mod obj;
+mod stl;
+
+/// A mesh file format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Format {
+    /// Wavefront OBJ (text). Writing adds a sibling `.mtl` file when materials are given.
+    Obj,
+    /// STL. Reads ASCII and binary; writes binary.
+    Stl,
+    /// glTF 2.0 JSON with an external `.bin` buffer (reading also accepts embedded `data:`
+    /// buffers).
+    Gltf,
+    /// Binary glTF 2.0: JSON and buffer in one file.
+    Glb,
+}
+
+impl Format {
+    /// Every format, in the order they are listed in messages.
+    pub const ALL: [Format; 4] = [Format::Obj, Format::Stl, Format::Gltf, Format::Glb];
+
+    /// The format named by `path`'s extension (case-insensitive: `.obj`, `.stl`, `.gltf`,
+    /// `.glb`).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Unsupported`] when the extension is missing or unknown; pass a [`Format`]
+    /// explicitly (e.g. parsed from a `--format` option) to [`read_mesh_as`] or
+    /// [`write_mesh_as`] instead.
+    pub fn from_path(path: &Path) -> Result<Format> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref().map(str::parse::<Format>) {
+            Some(Ok(f)) => Ok(f),
+            Some(Err(_)) | None => Err(Error::Unsupported {
+                path: path.to_path_buf(),
+                message: format!(
+                    "{}; expected .obj, .stl, .gltf or .glb, or name the format explicitly",
+                    match &ext {
+                        Some(e) => format!("unknown file extension `.{e}`"),
+                        None => "no file extension".to_owned(),
+                    }
+                ),
+            }),
+        }
+    }
+
+    /// The usual file extension, lower case and without the dot.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Format::Obj => "obj",
+            Format::Stl => "stl",
+            Format::Gltf => "gltf",
+            Format::Glb => "glb",
+        }
+    }
+}
+
+impl fmt::Display for Format {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.extension())
+    }
+}
+
+/// The error of parsing a [`Format`] from a string that names none.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ParseFormatError {
+    name: String,
+}
+
+impl fmt::Display for ParseFormatError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "unknown mesh format `{}`: expected obj, stl, gltf or glb",
+            self.name
+        )
+    }
+}
+
+impl std::error::Error for ParseFormatError {}
+
+impl FromStr for Format {
+    type Err = ParseFormatError;
+
+    /// Parses a format name, case-insensitive and with an optional leading dot: `obj`, `stl`,
+    /// `gltf`, `glb`.
+    fn from_str(s: &str) -> std::result::Result<Format, ParseFormatError> {
+        let name = s.trim();
+        let name = name.strip_prefix('.').unwrap_or(name);
+        Format::ALL
+            .into_iter()
+            .find(|f| f.extension().eq_ignore_ascii_case(name))
+            .ok_or_else(|| ParseFormatError { name: s.to_owned() })
+    }
+}
+
+/// Reads a mesh file, choosing the format by the file's extension.
+///
+/// The result is welded (bit-identical positions share one vertex), every triangle has
+/// source id 0, and triangles that repeat a vertex after welding are dropped.
+///
+/// # Errors
+///
+/// [`Error::Unsupported`] for an unknown extension or an unsupported feature of the format,
+/// [`Error::Io`] when the file (or a glTF's external buffer) cannot be read, and
+/// [`Error::Parse`] naming the file (and, for OBJ and ASCII STL, the line) when the content is
+/// malformed, has non-finite coordinates or holds no triangles.
+pub fn read_mesh(path: &Path) -> Result<Mesh> {
+    read_mesh_as(path, Format::from_path(path)?)
+}
+
+/// Reads a mesh file in the given format, whatever its extension. See [`read_mesh`].
+///
+/// # Errors
+///
+/// As [`read_mesh`].
+pub fn read_mesh_as(path: &Path, format: Format) -> Result<Mesh> {
+    let bytes = fs::read(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let mesh = match format {
+        Format::Obj => obj::read(path, &bytes)?,
+        Format::Stl => stl::read(path, &bytes)?,
+        Format::Gltf | Format::Glb => gltf::read(path, &bytes)?,
+    };
+    if mesh.is_empty() {
+        return Err(parse_error(path, None, "the file holds no triangles"));
+    }
+    Ok(mesh)
+}
+
+/// Writes a mesh file, choosing the format by the file's extension.
+///
+/// `materials[i]` is the material of the triangles whose source id is `i`; triangles whose
+/// source id has no entry get a default grey material. OBJ writes the materials to a sibling
+/// `.mtl` file (none when `materials` is empty), glTF as one primitive and material per source
+/// id, and STL ignores them.
+///
+/// The output is replaced atomically: the content goes to temporary files in the same
+/// directory, renamed over the destination only once complete. On error no temporary file
+/// remains and an existing destination is left untouched. (For the two-file formats the
+/// companion file, `.mtl` or `.bin`, is renamed first; only a failure between the two renames
+/// can leave a new companion beside an old main file.)
+///
+/// # Errors
+///
+/// [`Error::Unsupported`] for an unknown extension, [`Error::InvalidMesh`] when an index is
+/// out of range, `sources` and `triangles` differ in length, a used position is not finite,
+/// or (STL, glTF) does not fit in float32, [`Error::InvalidParameter`] for a material colour
+/// outside 0..=1, and [`Error::Io`] naming the destination when writing fails.
+pub fn write_mesh(path: &Path, mesh: &Mesh, materials: &[Material]) -> Result<()> {
+    write_mesh_as(path, mesh, materials, Format::from_path(path)?)
+}
+
+/// Writes a mesh file in the given format, whatever the path's extension. See [`write_mesh`].
+///
+/// # Errors
+///
+/// As [`write_mesh`].
+pub fn write_mesh_as(
+    path: &Path,
+    mesh: &Mesh,
+    materials: &[Material],
+    format: Format,
+) -> Result<()> {
+    check_mesh(mesh, format != Format::Obj)?;
+    for m in materials {
+        for &c in &m.base_color {
+            if !(0.0..=1.0).contains(&c) {
+                return Err(Error::param(
+                    "base_color",
+                    c,
+                    "each colour component must be in 0..=1",
+                ));
+            }
+        }
+    }
+    let files = match format {
+        Format::Obj => obj::write(path, mesh, materials),
+        Format::Stl => stl::write(mesh)?,
+        Format::Gltf => gltf::write(path, mesh, materials, false)?,
+        Format::Glb => gltf::write(path, mesh, materials, true)?,
+    };
+    // The main file comes first in `files`; companions are renamed before it so that a reader
+    // never sees a main file that refers to a missing or stale companion.
+    let mut outputs = files.companions;
+    outputs.push(OutFile {
+        path: path.to_path_buf(),
+        bytes: files.main,
+    });
+    write_atomically(&outputs)
+}
+
+/// The bytes a writer produced: the main file and any companions (`.mtl`, `.bin`).
+pub(crate) struct Files {
+    pub main: Vec<u8>,
+    pub companions: Vec<OutFile>,
+}
+
+/// One file to write.
+pub(crate) struct OutFile {
+    pub path: PathBuf,
+    pub bytes: Vec<u8>,
+}
+
+/// The grey given to source ids without a material.
+pub(crate) const DEFAULT_MATERIAL_COLOR: [f64; 4] = [0.8, 0.8, 0.8, 1.0];
+/// The name of that default material.
+pub(crate) const DEFAULT_MATERIAL_NAME: &str = "default";
+
+/// `"bspcsg <version>"`, written as the generator of every file.
+pub(crate) fn generator() -> String {
+    format!("bspcsg {}", env!("CARGO_PKG_VERSION"))
+}
+
+/// An [`Error::Parse`] for `path`.
+pub(crate) fn parse_error(path: &Path, line: Option<usize>, message: impl Into<String>) -> Error {
+    Error::Parse {
+        path: path.to_path_buf(),
+        line,
+        message: message.into(),
+    }
+}
+
+/// Refuses meshes a writer would turn into a broken file: indices out of range, a `sources`
+/// list of the wrong length, used positions that are not finite or, where the format stores
+/// float32, that overflow it.
+fn check_mesh(mesh: &Mesh, float32: bool) -> Result<()> {
+    if mesh.sources.len() != mesh.triangles.len() {
+        return Err(Error::InvalidMesh(format!(
+            "{} triangles but {} source ids",
+            mesh.triangles.len(),
+            mesh.sources.len()
+        )));
+    }
+    let n = mesh.positions.len();
+    // All positions, used or not: OBJ writes every one.
+    if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
+        return Err(Error::InvalidMesh(format!(
+            "vertex {i} is not finite: {}",
+            mesh.positions[i]
+        )));
+    }
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for &i in tri {
+            let Some(&p) = mesh.positions.get(i as usize) else {
+                return Err(Error::InvalidMesh(format!(
+                    "triangle {t} refers to vertex {i}, but there are {n} vertices"
+                )));
+            };
+            if float32 && !p.as_vec3().is_finite() {
+                return Err(Error::InvalidMesh(format!(
+                    "vertex {i} = {p} is beyond the float32 range this format stores"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Distinguishes the temporary files of concurrent writes within one process.
+static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// A temporary file beside its destination, removed on drop unless renamed into place.
+struct TempFile {
+    tmp: PathBuf,
+    dest: PathBuf,
+    renamed: bool,
+}
+
+impl TempFile {
+    /// Creates the temporary file for `dest` and writes `bytes` to it.
+    fn write(dest: &Path, bytes: &[u8]) -> Result<TempFile> {
+        let io_err = |source| Error::Io {
+            path: dest.to_path_buf(),
+            source,
+        };
+        let name = dest.file_name().ok_or_else(|| {
+            io_err(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "the output path does not name a file",
+            ))
+        })?;
+        let dir = match dest.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        let n = TEMP_COUNTER.fetch_add(1, Ordering::Relaxed);
+        let mut tmp_name = std::ffi::OsString::from(".");
+        tmp_name.push(name);
+        tmp_name.push(format!(".{}.{n}.tmp", std::process::id()));
+        let tmp = dir.join(tmp_name);
+        // `create_new` never clobbers a stranger's file that happens to have the same name.
+        let mut file = fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+            .map_err(io_err)?;
+        // From here on the guard removes the temporary file if anything fails.
+        let guard = TempFile {
+            tmp,
+            dest: dest.to_path_buf(),
+            renamed: false,
+        };
+        file.write_all(bytes).map_err(io_err)?;
+        // Flushed to disk before the rename, so a crash cannot leave a renamed but empty file.
+        file.sync_all().map_err(io_err)?;
+        Ok(guard)
+    }
+
+    fn rename(&mut self) -> Result<()> {
+        fs::rename(&self.tmp, &self.dest).map_err(|source| Error::Io {
+            path: self.dest.clone(),
+            source,
+        })?;
+        self.renamed = true;
+        Ok(())
+    }
+}
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        if !self.renamed {
+            // Nothing more can be done about a failure here; the write already failed.
+            let _ = fs::remove_file(&self.tmp);
+        }
+    }
+}
+
+/// Writes every file to a temporary first and renames them, in order, only once all are
+/// complete.
+fn write_atomically(files: &[OutFile]) -> Result<()> {
+    let mut temps = Vec::with_capacity(files.len());
+    for f in files {
+        temps.push(TempFile::write(&f.path, &f.bytes)?);
+    }
+    for t in &mut temps {
+        t.rename()?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn format_from_path_is_case_insensitive() {
+        let f = |p: &str| Format::from_path(Path::new(p));
+        assert_eq!(f("a/b.OBJ").ok(), Some(Format::Obj));
+        assert_eq!(f("b.Stl").ok(), Some(Format::Stl));
+        assert_eq!(f("b.gltf").ok(), Some(Format::Gltf));
+        assert_eq!(f("b.GLB").ok(), Some(Format::Glb));
+        assert!(matches!(f("b.ply"), Err(Error::Unsupported { .. })));
+        assert!(matches!(f("noext"), Err(Error::Unsupported { .. })));
+    }
+
+    #[test]
+    fn format_from_str() {
+        assert_eq!("glb".parse::<Format>(), Ok(Format::Glb));
+        assert_eq!(".OBJ".parse::<Format>(), Ok(Format::Obj));
+        let e = "ply".parse::<Format>().unwrap_err();
+        assert!(e.to_string().contains("ply"));
+        for f in Format::ALL {
+            assert_eq!(f.to_string().parse::<Format>(), Ok(f));
+        }
+    }
+}

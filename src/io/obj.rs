@@ -1,0 +1,404 @@
+//! Wavefront OBJ: positions and faces in, positions, faces and materials (`.mtl`) out.
+//!
+//! Reading runs in two steps. A pre-pass over the text checks every `v` and `f` line (so
+//! errors name their line, which tobj's do not), resolves relative indices, and hands tobj a
+//! reduced text of positions and position-only faces; tobj then triangulates. The reduction
+//! is what keeps UV and normal seams from splitting vertices, and it also keeps tobj 4.0.5
+//! away from texture-coordinate and normal indices, whose arithmetic overflows (a panic in
+//! debug builds) on out-of-range relative indices.
+
+use std::collections::{BTreeMap, HashSet};
+use std::fmt::Write as _;
+use std::path::Path;
+
+use glam::DVec3;
+
+use super::{
+    DEFAULT_MATERIAL_COLOR, DEFAULT_MATERIAL_NAME, Files, OutFile, generator, parse_error,
+};
+use crate::error::Result;
+use crate::mesh::weld::Welder;
+use crate::mesh::{Material, Mesh};
+
+/// Reads OBJ text.
+pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh> {
+    let reduced = reduce(path, bytes)?;
+    let options = tobj::LoadOptions {
+        single_index: false,
+        triangulate: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    // The reduced text has no `mtllib` lines, so the material loader is never called.
+    let (models, _) = tobj::load_obj_buf(&mut reduced.as_bytes(), &options, |_| {
+        Err(tobj::LoadError::GenericFailure)
+    })
+    .map_err(|e| parse_error(path, None, format!("OBJ parser: {e}")))?;
+
+    let n: usize = models.iter().map(|m| m.mesh.indices.len()).sum();
+    let mut welder = Welder::with_capacity(n / 2);
+    let mut triangles = Vec::with_capacity(n / 3);
+    for model in &models {
+        let m = &model.mesh;
+        let local: Vec<u32> = m
+            .positions
+            .chunks_exact(3)
+            .map(|c| welder.index(DVec3::new(c[0], c[1], c[2])))
+            .collect();
+        for t in m.indices.chunks_exact(3) {
+            let mut tri = [0u32; 3];
+            for (k, &i) in t.iter().enumerate() {
+                tri[k] = *local.get(i as usize).ok_or_else(|| {
+                    parse_error(path, None, "OBJ parser returned an index out of range")
+                })?;
+            }
+            // A face that repeats a vertex (after welding) has no area and no edges of its own.
+            if tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2] {
+                triangles.push(tri);
+            }
+        }
+    }
+    Ok(Mesh::new(welder.positions, triangles))
+}
+
+/// Checks the `v` and `f` lines and returns the text tobj gets: `v x y z` lines with the
+/// coordinates printed losslessly, `f` lines of absolute 1-based position indices, and an empty
+/// line for every other line (so tobj's line count matches the file's).
+fn reduce(path: &Path, bytes: &[u8]) -> Result<String> {
+    let mut out = String::with_capacity(bytes.len() / 2);
+    let mut vertices: usize = 0;
+    let mut faces: usize = 0;
+    // Positive indices past the vertices read so far: allowed if the file defines them later.
+    let mut forward: Vec<(usize, i64)> = Vec::new();
+    for (n, raw) in bytes.split(|&b| b == b'\n').enumerate() {
+        let line_no = n + 1;
+        let err = |message: String| parse_error(path, Some(line_no), message);
+        // Comments and names may be in any encoding; only `v` and `f` lines must be ASCII.
+        let line = String::from_utf8_lossy(raw);
+        // A `#` starts a comment, also after data (`v 1 2 3 # corner`).
+        let data = line.split_once('#').map_or(&*line, |(d, _)| d);
+        let mut words = data.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                let mut c = [0.0f64; 4];
+                let mut count = 0;
+                for w in words {
+                    let x: f64 = w
+                        .parse()
+                        .map_err(|_| err(format!("vertex coordinate `{w}` is not a number")))?;
+                    if count < 4 {
+                        c[count] = x;
+                    }
+                    count += 1;
+                }
+                if count < 3 {
+                    return Err(err(format!(
+                        "vertex has {count} coordinates, needs 3 (x y z)"
+                    )));
+                }
+                let mut p = DVec3::new(c[0], c[1], c[2]);
+                // Exactly four numbers are x y z w; six are x y z r g b (colours are ignored).
+                if count == 4 {
+                    let w = c[3];
+                    if w == 0.0 || !w.is_finite() {
+                        return Err(err(format!("vertex weight w = {w} is not usable")));
+                    }
+                    p /= w;
+                }
+                if !p.is_finite() {
+                    return Err(err(format!(
+                        "vertex coordinates ({}, {}, {}) are not all finite",
+                        p.x, p.y, p.z
+                    )));
+                }
+                vertices += 1;
+                // `{}` prints the shortest text that parses back to the same f64.
+                let _ = writeln!(out, "v {} {} {}", p.x, p.y, p.z);
+            }
+            Some("f") => {
+                out.push('f');
+                let mut corners = 0;
+                for w in words {
+                    // `v`, `v/vt`, `v//vn` or `v/vt/vn`: only the position index matters here.
+                    let v = w.split('/').next().unwrap_or(w);
+                    let i: i64 = v
+                        .parse()
+                        .map_err(|_| err(format!("face vertex `{w}` is not an index")))?;
+                    let abs = if i > 0 {
+                        if i as u64 > vertices as u64 {
+                            forward.push((line_no, i));
+                        }
+                        i
+                    } else if i < 0 {
+                        let abs = vertices as i64 + i + 1;
+                        if abs < 1 {
+                            return Err(err(format!(
+                                "relative vertex index {i} reaches before the first vertex \
+                                 ({vertices} vertices precede this line)"
+                            )));
+                        }
+                        abs
+                    } else {
+                        return Err(err(
+                            "vertex index 0 in a face: OBJ indices start at 1".into()
+                        ));
+                    };
+                    let _ = write!(out, " {abs}");
+                    corners += 1;
+                }
+                if corners < 3 {
+                    return Err(err(format!(
+                        "face has {corners} vertices, needs at least 3"
+                    )));
+                }
+                out.push('\n');
+                faces += 1;
+            }
+            // Texture coordinates, normals, groups, materials, lines, points, comments …
+            _ => out.push('\n'),
+        }
+    }
+    if let Some(&(line, i)) = forward.iter().find(|&&(_, i)| i as u64 > vertices as u64) {
+        return Err(parse_error(
+            path,
+            Some(line),
+            format!("vertex index {i} is out of range: the file has {vertices} vertices"),
+        ));
+    }
+    if faces == 0 {
+        return Err(parse_error(path, None, "the file holds no faces"));
+    }
+    Ok(out)
+}
+
+/// Writes OBJ text, and a sibling `.mtl` when `materials` is not empty.
+pub(crate) fn write(path: &Path, mesh: &Mesh, materials: &[Material]) -> Files {
+    let mut obj = String::with_capacity(32 * mesh.positions.len() + 24 * mesh.triangles.len());
+    let _ = writeln!(obj, "# {}", generator());
+    let _ = writeln!(
+        obj,
+        "# {} vertices, {} triangles",
+        mesh.positions.len(),
+        mesh.triangles.len()
+    );
+    let mtl_path = path.with_extension("mtl");
+    let with_materials = !materials.is_empty();
+    if with_materials {
+        if let Some(name) = mtl_path.file_name() {
+            let _ = writeln!(obj, "mtllib {}", name.to_string_lossy());
+        }
+    }
+    for p in &mesh.positions {
+        // `{}` is the shortest representation that parses back to the same f64.
+        let _ = writeln!(obj, "v {} {} {}", p.x, p.y, p.z);
+    }
+    let face = |obj: &mut String, t: &[u32; 3]| {
+        let [a, b, c] = t.map(|i| u64::from(i) + 1);
+        let _ = writeln!(obj, "f {a} {b} {c}");
+    };
+    let mut companions = Vec::new();
+    if with_materials {
+        // One `usemtl` group per source id, in increasing order.
+        let mut groups: BTreeMap<u32, Vec<usize>> = BTreeMap::new();
+        for (t, &s) in mesh.sources.iter().enumerate() {
+            groups.entry(s).or_default().push(t);
+        }
+        let names = material_names(materials);
+        let mut mtl = format!("# {}\n", generator());
+        let mut default_written = false;
+        for (&s, tris) in &groups {
+            let name = match names.get(s as usize) {
+                Some(n) => n.as_str(),
+                None => {
+                    if !default_written {
+                        write_material(&mut mtl, DEFAULT_MATERIAL_NAME, DEFAULT_MATERIAL_COLOR);
+                        default_written = true;
+                    }
+                    DEFAULT_MATERIAL_NAME
+                }
+            };
+            let _ = writeln!(obj, "usemtl {name}");
+            for &t in tris {
+                face(&mut obj, &mesh.triangles[t]);
+            }
+        }
+        for (name, m) in names.iter().zip(materials) {
+            write_material(&mut mtl, name, m.base_color);
+        }
+        companions.push(OutFile {
+            path: mtl_path,
+            bytes: mtl.into_bytes(),
+        });
+    } else {
+        for t in &mesh.triangles {
+            face(&mut obj, t);
+        }
+    }
+    Files {
+        main: obj.into_bytes(),
+        companions,
+    }
+}
+
+fn write_material(mtl: &mut String, name: &str, c: [f64; 4]) {
+    let _ = writeln!(
+        mtl,
+        "\nnewmtl {name}\nKd {} {} {}\nd {}",
+        c[0], c[1], c[2], c[3]
+    );
+}
+
+/// Material names usable in `newmtl` / `usemtl`: whitespace becomes `_` (the name ends at the
+/// first space), empty names and names already taken (including the default's) get a
+/// numbered one.
+fn material_names(materials: &[Material]) -> Vec<String> {
+    let mut taken: HashSet<String> = HashSet::new();
+    taken.insert(DEFAULT_MATERIAL_NAME.to_owned());
+    materials
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let clean: String = m
+                .name
+                .chars()
+                .map(|c| if c.is_whitespace() { '_' } else { c })
+                .collect();
+            let mut name = if clean.is_empty() {
+                format!("material_{i}")
+            } else {
+                clean
+            };
+            while !taken.insert(name.clone()) {
+                name = format!("{name}_{i}");
+            }
+            name
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::error::Error;
+
+    fn parse(text: &str) -> Result<Mesh> {
+        read(Path::new("t.obj"), text.as_bytes())
+    }
+
+    fn line_of(e: Error) -> Option<usize> {
+        match e {
+            Error::Parse { line, .. } => line,
+            other => panic!("expected a parse error, got {other}"),
+        }
+    }
+
+    #[test]
+    fn quad_with_uv_seams_is_one_welded_quad() {
+        let m = parse(
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvn 0 0 1\n\
+             f 1/1/1 2/2/1 3/1/1 4/2/1\n",
+        )
+        .unwrap();
+        assert_eq!(m.triangle_count(), 2);
+        assert_eq!(m.vertex_count(), 4);
+    }
+
+    #[test]
+    fn relative_indices_and_objects_merge() {
+        let m =
+            parse("o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\no b\nv 0 0 1\nf 1 2 -1\n").unwrap();
+        assert_eq!(m.triangle_count(), 2);
+        assert_eq!(m.vertex_count(), 4);
+    }
+
+    #[test]
+    fn duplicate_positions_weld() {
+        let m = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 0\nf 1 2 3\nf 4 3 2\n").unwrap();
+        assert_eq!(m.vertex_count(), 3);
+        // The second face repeats the first's vertices in another order; both stay.
+        assert_eq!(m.triangle_count(), 2);
+    }
+
+    #[test]
+    fn trailing_comments() {
+        let m = parse("v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nf 1 2 3 # the face\n").unwrap();
+        assert_eq!(m.triangle_count(), 1);
+    }
+
+    #[test]
+    fn weighted_vertex() {
+        let m = parse("v 2 0 0 2\nv 0 1 0\nv 0 0 1\nf 1 2 3\n").unwrap();
+        assert_eq!(m.positions[0], DVec3::X);
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        assert_eq!(line_of(parse("v 0 0 0\nv 1 nan 0\n").unwrap_err()), Some(2));
+        assert_eq!(line_of(parse("v 0 0 0\nv 1 inf 0\n").unwrap_err()), Some(2));
+        assert_eq!(line_of(parse("v 0 0 0\nv 1 x 0\n").unwrap_err()), Some(2));
+        assert_eq!(line_of(parse("v 0 0\n").unwrap_err()), Some(1));
+        assert_eq!(line_of(parse("v 1e400 0 0\n").unwrap_err()), Some(1));
+        assert_eq!(line_of(parse("v 0 0 0\n\nf 1 2 3\n").unwrap_err()), Some(3));
+        assert_eq!(line_of(parse("v 0 0 0\nf 1 -2 1\n").unwrap_err()), Some(2));
+        assert_eq!(line_of(parse("v 0 0 0\nf 0 1 1\n").unwrap_err()), Some(2));
+        assert_eq!(line_of(parse("v 0 0 0\nf 1 1\n").unwrap_err()), Some(2));
+        assert_eq!(line_of(parse("v 0 0 0\nf 1 a 1\n").unwrap_err()), Some(2));
+        assert_eq!(line_of(parse("v 0 0 0 0\n").unwrap_err()), Some(1));
+        assert_eq!(line_of(parse("# nothing\n").unwrap_err()), None);
+    }
+
+    #[test]
+    fn huge_relative_texture_indices_do_not_panic() {
+        // tobj computes `vt * 2 + 1` on the wrapped index; the reduction never shows it one.
+        let m = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/-9 2/-9 3/-9223372036854775807\n")
+            .unwrap();
+        assert_eq!(m.triangle_count(), 1);
+    }
+
+    #[test]
+    fn forward_references_are_allowed_if_defined_later() {
+        let m = parse("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n").unwrap();
+        assert_eq!(m.triangle_count(), 1);
+    }
+
+    #[test]
+    fn material_names_are_unique_and_spaceless() {
+        let m = |n: &str| Material {
+            name: n.into(),
+            base_color: [1.0; 4],
+        };
+        let names = material_names(&[m("a b"), m("a_b"), m(""), m("default")]);
+        assert_eq!(names, ["a_b", "a_b_1", "material_2", "default_3"]);
+    }
+
+    #[test]
+    fn writes_materials_grouped_by_source() {
+        let mesh = Mesh {
+            positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+            triangles: vec![[0, 1, 2], [0, 2, 3], [0, 3, 1]],
+            sources: vec![1, 0, 5],
+        };
+        let mats = [
+            Material {
+                name: "red".into(),
+                base_color: [1.0, 0.0, 0.0, 1.0],
+            },
+            Material {
+                name: "blue".into(),
+                base_color: [0.0, 0.0, 1.0, 0.5],
+            },
+        ];
+        let files = write(Path::new("dir/x.obj"), &mesh, &mats);
+        let obj = String::from_utf8(files.main).unwrap();
+        assert!(obj.contains("mtllib x.mtl\n"));
+        let order: Vec<&str> = obj.lines().filter(|l| l.starts_with("usemtl")).collect();
+        assert_eq!(order, ["usemtl red", "usemtl blue", "usemtl default"]);
+        assert_eq!(files.companions.len(), 1);
+        assert_eq!(files.companions[0].path, Path::new("dir/x.mtl"));
+        let mtl = String::from_utf8(files.companions[0].bytes.clone()).unwrap();
+        assert!(mtl.contains("newmtl blue\nKd 0 0 1\nd 0.5\n"));
+        assert!(mtl.contains("newmtl default\nKd 0.8 0.8 0.8\nd 1\n"));
+        let back = parse(&obj).unwrap();
+        assert_eq!(back.triangle_count(), 3);
+    }
+}
