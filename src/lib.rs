@@ -52,6 +52,7 @@ mod geom;
 mod mesh;
 mod polygon;
 mod primitives;
+mod sdf;
 mod solid;
 
 pub use boolean::{BoolOp, boolean};
@@ -60,6 +61,10 @@ pub use geom::{Aabb, Plane, Side, Tolerance};
 pub use mesh::{Material, Mesh};
 pub use polygon::Polygon;
 pub use primitives::{MAX_SEGMENTS, MIN_SEGMENTS, segments_for_tolerance};
+pub use sdf::{
+    BakeOptions, FALLBACK_COLOR, MAX_GRID_CELLS, MAX_POLYGON_POINTS, MAX_SCENE_MAGNITUDE,
+    RenderProfile, Scene, TessellationOptions,
+};
 pub use solid::{Containment, PointClassifier, Solid};
 
 pub use glam;
