@@ -179,15 +179,34 @@ struct Block {
     hi: [usize; 3],
 }
 
-/// The field marched: the scene intersected with the grid's box.
-struct Field<'a> {
-    program: &'a Program,
+/// What marching cubes samples: anything that evaluates points in batches.
+pub(crate) trait Source: Sync {
+    fn eval(&self, scratch: &mut Scratch, p: DVec3) -> f64 {
+        let mut out = [0.0];
+        self.eval_batch(scratch, &[p], &mut out);
+        out[0]
+    }
+    fn eval_batch(&self, scratch: &mut Scratch, points: &[DVec3], out: &mut [f64]);
+}
+
+impl Source for Program {
+    fn eval(&self, _: &mut Scratch, p: DVec3) -> f64 {
+        Program::eval(self, p)
+    }
+    fn eval_batch(&self, scratch: &mut Scratch, points: &[DVec3], out: &mut [f64]) {
+        Program::eval_batch(self, scratch, points, out);
+    }
+}
+
+/// The field marched: the source intersected with the grid's box.
+struct Field<'a, S: Source + ?Sized> {
+    source: &'a S,
     grid: Grid,
     center: DVec3,
     half: DVec3,
 }
 
-impl Field<'_> {
+impl<S: Source + ?Sized> Field<'_, S> {
     #[inline]
     fn clip(&self, p: DVec3, d: f64) -> f64 {
         let q = (p - self.center).abs() - self.half;
@@ -195,12 +214,12 @@ impl Field<'_> {
         d.max(b)
     }
 
-    fn eval(&self, p: DVec3) -> f64 {
-        self.clip(p, self.program.eval(p))
+    fn eval(&self, scratch: &mut Scratch, p: DVec3) -> f64 {
+        self.clip(p, self.source.eval(scratch, p))
     }
 
     fn eval_batch(&self, scratch: &mut Scratch, points: &[DVec3], out: &mut [f64]) {
-        self.program.eval_batch(scratch, points, out);
+        self.source.eval_batch(scratch, points, out);
         for (o, &p) in out.iter_mut().zip(points) {
             *o = self.clip(p, *o);
         }
@@ -235,10 +254,10 @@ struct Work {
 }
 
 /// Bakes `program` over `grid` into a mesh (sources all 0; the caller assigns materials).
-pub(crate) fn march(program: &Program, grid: Grid, refine_steps: u32) -> Mesh {
+pub(crate) fn march<S: Source + ?Sized>(source: &S, grid: Grid, refine_steps: u32) -> Mesh {
     let bbox = grid.bbox();
     let field = Field {
-        program,
+        source,
         grid,
         center: bbox.center(),
         half: bbox.size() * 0.5,
@@ -265,7 +284,7 @@ pub(crate) fn march(program: &Program, grid: Grid, refine_steps: u32) -> Mesh {
             let mut part = Part::default();
             let mut stack = vec![b];
             while let Some(b) = stack.pop() {
-                if cannot_hold_surface(&field, &b) {
+                if cannot_hold_surface(&field, &mut work.scratch, &b) {
                     continue;
                 }
                 let size = (0..3).map(|i| b.hi[i] - b.lo[i]).max().unwrap_or(0);
@@ -281,14 +300,18 @@ pub(crate) fn march(program: &Program, grid: Grid, refine_steps: u32) -> Mesh {
     merge(parts)
 }
 
-fn cannot_hold_surface(field: &Field, b: &Block) -> bool {
+fn cannot_hold_surface<S: Source + ?Sized>(
+    field: &Field<S>,
+    scratch: &mut Scratch,
+    b: &Block,
+) -> bool {
     let g = &field.grid;
     let lo = g.point(b.lo[0], b.lo[1], b.lo[2]);
     let hi = g.point(b.hi[0], b.hi[1], b.hi[2]);
     let c = (lo + hi) * 0.5;
     let r = (hi - lo).length() * 0.5;
     // A margin for rounding in the field and in the corner coordinates.
-    field.eval(c).abs() > r * (1.0 + 1e-9) + 1e-12 * (g.cell + c.abs().max_element())
+    field.eval(scratch, c).abs() > r * (1.0 + 1e-9) + 1e-12 * (g.cell + c.abs().max_element())
 }
 
 fn split(b: &Block, stack: &mut Vec<Block>) {
@@ -309,7 +332,13 @@ fn split(b: &Block, stack: &mut Vec<Block>) {
 }
 
 /// Samples one leaf block and appends its triangles to `part`.
-fn leaf(field: &Field, b: &Block, refine_steps: u32, w: &mut Work, part: &mut Part) {
+fn leaf<S: Source + ?Sized>(
+    field: &Field<S>,
+    b: &Block,
+    refine_steps: u32,
+    w: &mut Work,
+    part: &mut Part,
+) {
     let g = &field.grid;
     let d = [0, 1, 2].map(|i| b.hi[i] - b.lo[i]);
     let (px, py, pz) = (d[0] + 1, d[1] + 1, d[2] + 1);
@@ -468,7 +497,7 @@ fn leaf(field: &Field, b: &Block, refine_steps: u32, w: &mut Work, part: &mut Pa
 }
 
 /// Illinois regula falsi on every bracket at once: each step evaluates one probe per vertex.
-fn refine(field: &Field, steps: u32, w: &mut Work) {
+fn refine<S: Source + ?Sized>(field: &Field<S>, steps: u32, w: &mut Work) {
     let n = w.a.len();
     w.side.clear();
     w.side.resize(n, 0);
@@ -555,4 +584,156 @@ fn merge(parts: Vec<Part>) -> Mesh {
         triangles.extend(part.triangles.iter().map(|t| t.map(|v| remap[v as usize])));
     }
     Mesh::new(positions, triangles)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+    use std::collections::HashMap;
+
+    /// Trilinear interpolation of values at the lattice points of a unit-cell grid.
+    struct Lattice {
+        n: [usize; 3],
+        values: Vec<f64>,
+    }
+
+    impl Lattice {
+        fn at(&self, i: usize, j: usize, k: usize) -> f64 {
+            self.values[(k * (self.n[1] + 1) + j) * (self.n[0] + 1) + i]
+        }
+    }
+
+    impl Source for Lattice {
+        fn eval_batch(&self, _: &mut Scratch, points: &[DVec3], out: &mut [f64]) {
+            for (o, p) in out.iter_mut().zip(points) {
+                let c = [p.x, p.y, p.z];
+                let mut i = [0usize; 3];
+                let mut t = [0.0; 3];
+                for a in 0..3 {
+                    let x = c[a].clamp(0.0, self.n[a] as f64);
+                    i[a] = (x.floor() as usize).min(self.n[a].saturating_sub(1));
+                    t[a] = x - i[a] as f64;
+                }
+                let mut v = 0.0;
+                for corner in 0..8 {
+                    let (dx, dy, dz) = (corner & 1, corner >> 1 & 1, corner >> 2 & 1);
+                    let w = (if dx == 1 { t[0] } else { 1.0 - t[0] })
+                        * (if dy == 1 { t[1] } else { 1.0 - t[1] })
+                        * (if dz == 1 { t[2] } else { 1.0 - t[2] });
+                    if w != 0.0 {
+                        v += w * self.at(i[0] + dx, i[1] + dy, i[2] + dz);
+                    }
+                }
+                *o = v;
+            }
+        }
+    }
+
+    fn check_closed(mesh: &Mesh) -> std::result::Result<(), String> {
+        let mut und: HashMap<(u32, u32), u32> = HashMap::new();
+        let mut dir: HashMap<(u32, u32), u32> = HashMap::new();
+        for t in &mesh.triangles {
+            if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+                return Err(format!("degenerate triangle {t:?}"));
+            }
+            for i in 0..3 {
+                let (a, b) = (t[i], t[(i + 1) % 3]);
+                *und.entry((a.min(b), a.max(b))).or_default() += 1;
+                *dir.entry((a, b)).or_default() += 1;
+            }
+        }
+        let bad = und.values().filter(|&&c| c != 2).count();
+        let twisted = dir.values().filter(|&&c| c != 1).count();
+        if bad + twisted > 0 {
+            return Err(format!(
+                "{bad} edges not used twice, {twisted} directed edges reused"
+            ));
+        }
+        // Distinct vertices have distinct positions (vertices stay inside their edges).
+        let mut pos: HashMap<[u64; 3], u32> = HashMap::new();
+        for (i, p) in mesh.positions.iter().enumerate() {
+            if let Some(j) = pos.insert(p.to_array().map(f64::to_bits), i as u32) {
+                return Err(format!("vertices {i} and {j} coincide"));
+            }
+        }
+        Ok(())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+        #[test]
+        fn random_lattices_give_closed_oriented_manifolds(
+            nx in 1usize..20, ny in 1usize..12, nz in 1usize..12,
+            seed in any::<u64>(), zeros in 0u32..4,
+        ) {
+            let n = [nx, ny, nz];
+            let count = (nx + 1) * (ny + 1) * (nz + 1);
+            let mut state = seed | 1;
+            let values = (0..count)
+                .map(|_| {
+                    state ^= state << 13;
+                    state ^= state >> 7;
+                    state ^= state << 17;
+                    let r = (state >> 11) as f64 / (1u64 << 53) as f64;
+                    // Exact zeros sometimes, to exercise the sign convention.
+                    if (state & 7) < zeros as u64 { 0.0 } else { 0.2 * r - 0.1 }
+                })
+                .collect();
+            let lattice = Lattice { n, values };
+            let grid = Grid { origin: DVec3::ZERO, cell: 1.0, n };
+            let mesh = march(&lattice, grid, 2);
+            prop_assert!(check_closed(&mesh).is_ok(), "{:?}", check_closed(&mesh));
+            // Positive volume: outward orientation.
+            if !mesh.is_empty() {
+                prop_assert!(mesh.volume() > 0.0);
+            }
+        }
+    }
+
+    #[test]
+    fn saddle_faces_and_exact_zeros() {
+        // Every config of one cube, corner values ±1 or 0: closed in each case.
+        for config in 0..6561u32 {
+            let mut c = config;
+            let values: Vec<f64> = (0..8)
+                .map(|_| {
+                    let v = [-0.1, 0.0, 0.1][(c % 3) as usize];
+                    c /= 3;
+                    v
+                })
+                .collect();
+            let lattice = Lattice {
+                n: [1, 1, 1],
+                values,
+            };
+            // Pad by embedding in a 3³ grid whose border is outside.
+            let mut big = vec![0.1; 64];
+            for k in 0..2 {
+                for j in 0..2 {
+                    for i in 0..2 {
+                        big[((k + 1) * 4 + j + 1) * 4 + i + 1] = lattice.at(i, j, k);
+                    }
+                }
+            }
+            let lattice = Lattice {
+                n: [3, 3, 3],
+                values: big,
+            };
+            let mesh = march(
+                &lattice,
+                Grid {
+                    origin: DVec3::ZERO,
+                    cell: 1.0,
+                    n: [3, 3, 3],
+                },
+                1,
+            );
+            assert!(
+                check_closed(&mesh).is_ok(),
+                "{config}: {:?}",
+                check_closed(&mesh)
+            );
+        }
+    }
 }
