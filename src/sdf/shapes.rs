@@ -211,7 +211,7 @@ fn capped_cone(p: DVec3, h: f64, r1: f64, r2: f64) -> f64 {
     s * ca.length_squared().min(cb.length_squared()).sqrt()
 }
 
-/// IQ's exact pyramid: unit square base centred at the origin in y = 0, apex at (0, h, 0).
+/// IQ's pyramid, made exact at the base: unit square base centred at the origin in y = 0, apex at (0, h, 0).
 fn pyramid(p: DVec3, h: f64) -> f64 {
     let m2 = h * h + 0.25;
     let (mut x, y, mut z) = (p.x.abs(), p.y, p.z.abs());
@@ -230,8 +230,15 @@ fn pyramid(p: DVec3, h: f64) -> f64 {
     } else {
         a.min(b)
     };
-    let sign = if q.z.max(-y) < 0.0 { -1.0 } else { 1.0 };
-    ((d2 + q.z * q.z) / m2).sqrt() * sign
+    // IQ's expression is the distance to the four lateral faces only; the base square is a
+    // face too, nearer below the base and near it from inside.
+    let lateral = ((d2 + q.z * q.z) / m2).sqrt();
+    if q.z.max(-y) < 0.0 {
+        -lateral.min(y)
+    } else {
+        let b = DVec2::new(p.x.abs() - 0.5, p.z.abs() - 0.5).max(DVec2::ZERO);
+        lateral.min((b.length_squared() + y * y).sqrt())
+    }
 }
 
 /// IQ's exact polygon distance: nearest edge, sign by the crossing-number rule.
