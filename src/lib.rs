@@ -16,6 +16,13 @@
 //! # Ok::<(), bspcsg::Error>(())
 //! ```
 //!
+//! # Scenes
+//!
+//! A [`Scene`] is a tree of signed distance functions read from JSON (the format is in
+//! `docs/scene-format.md`). It meshes two ways: [`Scene::bake`] by marching cubes (closed
+//! 2-manifold output), and [`Scene::to_solid`] by tessellating each primitive and combining them
+//! with this crate's booleans.
+//!
 //! # Conventions
 //!
 //! Right-handed, Y up; primitives are centred at the origin and cylinders run along Y. Faces

@@ -238,3 +238,24 @@ fn several_placed_trees() {
     assert!((s.distance(glam::DVec3::new(-3.0, 0.0, 0.0)) + 1.0).abs() < 1e-12);
     assert!((s.distance(glam::DVec3::new(3.0, 0.0, 0.0)) + 2.0).abs() < 1e-12);
 }
+
+#[test]
+fn the_documented_complete_example_parses_and_bakes() {
+    let doc = std::fs::read_to_string(format!(
+        "{}/docs/scene-format.md",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    let block = doc
+        .split("## A complete example")
+        .nth(1)
+        .and_then(|s| s.split("```json").nth(1))
+        .and_then(|s| s.split("```").next())
+        .unwrap();
+    let s = Scene::from_json_str(block).unwrap();
+    assert_eq!(s.primitive_count(), 5);
+    let mesh = s.bake(&bspcsg::BakeOptions::with_resolution(64)).unwrap();
+    assert!(mesh.volume() > 0.0);
+    let names: Vec<&str> = s.materials().iter().map(|m| m.name.as_str()).collect();
+    assert!(names.contains(&"steel") && names.contains(&"machined") && names.contains(&"default"));
+}
