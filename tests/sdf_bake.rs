@@ -178,3 +178,17 @@ mod random {
         }
     }
 }
+
+#[test]
+fn a_huge_sparse_grid_is_cheap() {
+    // 16384 cells along x, but the sphere is tiny: only blocks near it are visited.
+    let s = scene(
+        r#"{"op": "union", "children": [
+            {"kind": "sdf_primitive", "data": {"primitive_type": "sphere", "radius": 0.5}},
+            {"kind": "sdf_primitive", "pos": [800, 0, 0], "data": {"primitive_type": "box", "size": [0.01, 0.01, 0.01]}}
+        ]}"#,
+    );
+    let mesh = s.bake(&BakeOptions::with_cell(0.05)).unwrap();
+    Topology::of(&mesh).assert_closed_manifold("sparse");
+    assert!(s.bake(&BakeOptions::with_cell(0.001)).is_err());
+}

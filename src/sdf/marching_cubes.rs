@@ -70,8 +70,10 @@ impl BakeOptions {
     }
 }
 
-/// The most cells along one axis of a grid.
-pub const MAX_GRID_CELLS: u32 = 1 << 15;
+/// The most cells along one axis of a grid. Work and memory grow with the surface's area in
+/// cells, not with the grid's volume, but a grid this fine around a large surface still needs
+/// gigabytes.
+pub const MAX_GRID_CELLS: u32 = 1 << 14;
 
 /// Leaf blocks are this many cells on a side; top-level blocks `LEAF << LEVELS`.
 const LEAF: usize = 8;
@@ -132,7 +134,7 @@ impl Grid {
                     return Err(Error::param(
                         "resolution",
                         r as f64,
-                        "must be in 1..=32768 cells",
+                        "must be in 1..=16384 cells",
                     ));
                 }
                 // The padding cells count towards the resolution.
@@ -152,7 +154,7 @@ impl Grid {
                 return Err(Error::param(
                     "cell",
                     cell,
-                    "gives more than 32768 cells along an axis; use a larger cell",
+                    "gives more than 16384 cells along an axis; use a larger cell",
                 ));
             }
             n[i] = cells as usize;
@@ -262,22 +264,28 @@ pub(crate) fn march<S: Source + ?Sized>(source: &S, grid: Grid, refine_steps: u3
         center: bbox.center(),
         half: bbox.size() * 0.5,
     };
+    // Coarse levels are culled here, sequentially (a few hundred evaluations at most), so a
+    // huge grid around a small shape never lists its empty blocks; the surviving top-level
+    // blocks then run in parallel.
     let top = LEAF << LEVELS;
     let mut tops = Vec::new();
-    for k in (0..grid.n[2]).step_by(top) {
-        for j in (0..grid.n[1]).step_by(top) {
-            for i in (0..grid.n[0]).step_by(top) {
-                tops.push(Block {
-                    lo: [i, j, k],
-                    hi: [
-                        (i + top).min(grid.n[0]),
-                        (j + top).min(grid.n[1]),
-                        (k + top).min(grid.n[2]),
-                    ],
-                });
-            }
+    let mut frontier = vec![Block {
+        lo: [0; 3],
+        hi: grid.n,
+    }];
+    let mut scratch = Scratch::default();
+    while let Some(b) = frontier.pop() {
+        if cannot_hold_surface(&field, &mut scratch, &b) {
+            continue;
+        }
+        if (0..3).all(|i| b.hi[i] - b.lo[i] <= top) {
+            tops.push(b);
+        } else {
+            split(&b, &mut frontier);
         }
     }
+    // Deterministic output order whatever the traversal.
+    tops.sort_unstable_by_key(|b| (b.lo[2], b.lo[1], b.lo[0]));
     let parts: Vec<Part> = tops
         .par_iter()
         .map_init(Work::default, |work, &b| {
