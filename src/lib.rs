@@ -16,6 +16,13 @@
 //! # Ok::<(), bspcsg::Error>(())
 //! ```
 //!
+//! # Scenes
+//!
+//! A [`Scene`] is a tree of signed distance functions read from JSON (the format is in
+//! `docs/scene-format.md`). It meshes two ways: [`Scene::bake`] by marching cubes (closed
+//! 2-manifold output), and [`Scene::to_solid`] by tessellating each primitive and combining them
+//! with this crate's booleans.
+//!
 //! # Conventions
 //!
 //! Right-handed, Y up; primitives are centred at the origin and cylinders run along Y. Faces
@@ -53,6 +60,7 @@ mod io;
 mod mesh;
 mod polygon;
 mod primitives;
+mod sdf;
 mod solid;
 
 pub use boolean::{BoolOp, boolean};
@@ -62,6 +70,10 @@ pub use io::{Format, ParseFormatError, read_mesh, read_mesh_as, write_mesh, writ
 pub use mesh::{FromMeshOptions, Material, Mesh, MeshReport, ShellReport};
 pub use polygon::Polygon;
 pub use primitives::{MAX_SEGMENTS, MIN_SEGMENTS, segments_for_tolerance};
+pub use sdf::{
+    BakeOptions, FALLBACK_COLOR, MAX_GRID_CELLS, MAX_POLYGON_POINTS, MAX_SCENE_MAGNITUDE,
+    RenderProfile, Scene, TessellationOptions,
+};
 pub use solid::{Containment, PointClassifier, Solid};
 
 pub use glam;

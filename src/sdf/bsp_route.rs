@@ -1,0 +1,249 @@
+//! The BSP route: a scene as a [`Solid`], each primitive tessellated from a chordal tolerance
+//! and the tree's booleans done by the kernel. Smooth operations have no exact polygonal form,
+//! so their subtrees are baked by marching cubes and then take part in the booleans like any
+//! other solid. Materials ride on the polygons' source ids throughout.
+
+use glam::{DAffine3, DQuat, DVec2, DVec3};
+
+use super::eval::{Program, map_box};
+use super::marching_cubes::{BakeOptions, Grid, march};
+use super::scene::Scene;
+use super::shapes::{Shape, Shape2};
+use super::tree::{BoolKind, Frame, NodeId, NodeKind};
+use crate::error::{Error, Result};
+use crate::geom::Aabb;
+use crate::polygon::Polygon;
+use crate::primitives::segments_for_tolerance;
+use crate::solid::Solid;
+
+/// How to turn a scene into a [`Solid`] (the BSP route).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TessellationOptions {
+    /// The largest distance a chord may stray from a round surface. `None`: 1/500 of the
+    /// scene's bounding diagonal.
+    pub tolerance: Option<f64>,
+    /// The marching-cubes cell for smooth subtrees. `None`: four times the tolerance.
+    pub cell: Option<f64>,
+}
+
+impl TessellationOptions {
+    /// Options with a chordal tolerance.
+    pub fn with_tolerance(tolerance: f64) -> Self {
+        TessellationOptions {
+            tolerance: Some(tolerance),
+            cell: None,
+        }
+    }
+}
+
+impl Scene {
+    /// The scene as a solid by the BSP route (see the module docs of `sdf`). Fails for an
+    /// unbounded scene or an out-of-range tolerance.
+    pub fn to_solid(&self, opts: &TessellationOptions) -> Result<Solid> {
+        let world = self.bound.bbox;
+        if world.is_empty() {
+            return Ok(Solid::empty());
+        }
+        if !(world.min.is_finite() && world.max.is_finite()) {
+            return Err(Error::Scene {
+                json_path: "$".into(),
+                message: "the scene is unbounded (a half-space not intersected with a bounded \
+                          shape), so it has no solid"
+                    .into(),
+            });
+        }
+        let tol = opts.tolerance.unwrap_or(world.diagonal() / 500.0);
+        if !(tol.is_finite() && tol > 0.0) {
+            return Err(Error::param("tolerance", tol, "must be finite and > 0"));
+        }
+        let cell = opts.cell.unwrap_or(4.0 * tol);
+        let ctx = Ctx {
+            scene: self,
+            tol,
+            cell,
+            world,
+        };
+        ctx.solid(self.root)
+    }
+}
+
+struct Ctx<'a> {
+    scene: &'a Scene,
+    tol: f64,
+    cell: f64,
+    world: Aabb,
+}
+
+impl Ctx<'_> {
+    fn solid(&self, root: NodeId) -> Result<Solid> {
+        enum Work {
+            Visit(NodeId, Frame),
+            Combine(BoolKind, usize),
+        }
+        let tree = &self.scene.tree;
+        let mut work = vec![Work::Visit(root, Frame::WORLD)];
+        let mut done: Vec<Solid> = Vec::new();
+        while let Some(w) = work.pop() {
+            match w {
+                Work::Combine(op, n) => {
+                    let children = done.split_off(done.len() - n);
+                    done.push(combine(op, children));
+                }
+                Work::Visit(id, parent) => {
+                    let node = tree.node(id);
+                    match &node.kind {
+                        NodeKind::Op {
+                            smooth: Some(_), ..
+                        } => done.push(self.bake(id, parent)?),
+                        NodeKind::Op {
+                            op,
+                            smooth: None,
+                            children,
+                        } => {
+                            let frame = parent.child(&node.transform);
+                            work.push(Work::Combine(*op, children.len()));
+                            for &c in children.iter().rev() {
+                                work.push(Work::Visit(c, frame));
+                            }
+                        }
+                        NodeKind::Leaf { shape, material } => {
+                            let frame = parent.child(&node.transform);
+                            let local = self.tessellate(shape, &frame)?;
+                            done.push(local.transform(frame.to_world)?.with_source(*material));
+                        }
+                    }
+                }
+            }
+        }
+        Ok(done.pop().unwrap_or_default())
+    }
+
+    /// Bakes a smooth subtree by marching cubes into a solid of triangles.
+    fn bake(&self, id: NodeId, parent: Frame) -> Result<Solid> {
+        let program = Program::compile(&self.scene.tree, id, parent)?;
+        let bound = program.bound();
+        let opts = BakeOptions::with_cell(self.cell);
+        let Some(grid) = Grid::new(
+            &bound.bbox.intersection(&self.world.expanded(self.cell)),
+            &opts,
+        )?
+        else {
+            return Ok(Solid::empty());
+        };
+        let mut mesh = march(&program, grid, opts.refine_steps);
+        super::assign_sources(&program, &mut mesh);
+        let polygons = (0..mesh.triangle_count())
+            .filter_map(|t| Polygon::new(mesh.triangle(t).as_slice(), mesh.sources[t]))
+            .collect();
+        Ok(Solid::from_polygons(polygons))
+    }
+
+    fn segments(&self, radius: f64, frame: &Frame) -> Result<u32> {
+        segments_for_tolerance(radius * frame.sigma_max, self.tol)
+    }
+
+    /// The primitive in its local frame.
+    fn tessellate(&self, shape: &Shape, frame: &Frame) -> Result<Solid> {
+        match shape {
+            Shape::Box { half } => Solid::cuboid(*half * 2.0),
+            Shape::Sphere { radius } => {
+                let n = self.segments(*radius, frame)?;
+                Solid::sphere(*radius, n, (n / 2).max(2))
+            }
+            Shape::Cylinder {
+                radius,
+                half_height,
+            } => Solid::cylinder(*radius, 2.0 * half_height, self.segments(*radius, frame)?),
+            Shape::Cone {
+                r_bottom,
+                r_top,
+                half_height,
+            } => Solid::frustum(
+                *r_bottom,
+                *r_top,
+                2.0 * half_height,
+                self.segments(r_bottom.max(*r_top), frame)?,
+            ),
+            Shape::Pyramid { base, height } => {
+                let (b, h) = (0.5 * base, 0.5 * height);
+                let v = [
+                    DVec3::new(-b, -h, -b),
+                    DVec3::new(b, -h, -b),
+                    DVec3::new(b, -h, b),
+                    DVec3::new(-b, -h, b),
+                    DVec3::new(0.0, h, 0.0),
+                ];
+                Solid::polyhedron(
+                    &v,
+                    &[
+                        vec![0, 1, 2, 3],
+                        vec![0, 4, 1],
+                        vec![1, 4, 2],
+                        vec![2, 4, 3],
+                        vec![3, 4, 0],
+                    ],
+                )
+            }
+            Shape::Torus { major, minor } => Solid::torus(
+                *major,
+                *minor,
+                self.segments(major + minor, frame)?,
+                self.segments(*minor, frame)?,
+            ),
+            Shape::Plane { normal, offset } => {
+                // A slab that covers the scene's box on the solid side of the plane.
+                let local = map_box(&frame.to_world.inverse(), &self.world);
+                let c = local.center();
+                let lift = normal.dot(c) + offset;
+                let l = 2.0 * (local.diagonal() + lift.abs()) + self.tol;
+                let on_plane = c - *normal * lift;
+                let place = DAffine3::from_rotation_translation(
+                    DQuat::from_rotation_arc(DVec3::Z, *normal),
+                    on_plane - *normal * (0.5 * l),
+                );
+                Solid::cuboid(DVec3::new(2.0 * l, 2.0 * l, l))?.transform(place)
+            }
+            Shape::Extrude { shape, half_depth } => {
+                let depth = 2.0 * half_depth;
+                match shape {
+                    Shape2::Rect { half } => Solid::cuboid((*half * 2.0).extend(depth)),
+                    Shape2::Circle { radius } => {
+                        Solid::cylinder(*radius, depth, self.segments(*radius, frame)?)?
+                            .rotate_axis_angle(DVec3::X, 90.0)
+                    }
+                    Shape2::Polygon { points } => prism(points, *half_depth),
+                }
+            }
+        }
+    }
+}
+
+fn combine(op: BoolKind, children: Vec<Solid>) -> Solid {
+    match op {
+        BoolKind::Union => Solid::union_all(children),
+        BoolKind::Intersect => Solid::intersection_all(children),
+        BoolKind::Subtract => {
+            let mut it = children.into_iter();
+            let first = it.next().unwrap_or_default();
+            let rest: Vec<Solid> = it.collect();
+            if rest.is_empty() {
+                first
+            } else {
+                first - Solid::union_all(rest)
+            }
+        }
+    }
+}
+
+/// A counter-clockwise polygon extruded over `|z| ≤ h`.
+fn prism(points: &[DVec2], h: f64) -> Result<Solid> {
+    let n = points.len() as u32;
+    let mut v: Vec<DVec3> = points.iter().map(|p| p.extend(-h)).collect();
+    v.extend(points.iter().map(|p| p.extend(h)));
+    let mut faces: Vec<Vec<u32>> = vec![(0..n).rev().collect(), (n..2 * n).collect()];
+    for i in 0..n {
+        let j = (i + 1) % n;
+        faces.push(vec![i, j, n + j, n + i]);
+    }
+    Solid::polyhedron(&v, &faces)
+}

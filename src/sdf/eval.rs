@@ -1,0 +1,544 @@
+//! The tree flattened into a postfix program over a value stack, evaluated for one point or a
+//! batch at a time, with the conservative bounds of what it describes.
+//!
+//! Flattening does three things once instead of at every point: it composes each leaf's
+//! transforms into one world → local map, it turns every distance and smoothing constant into
+//! world units, and it replaces the tree walk by a linear loop. A node with children
+//! `c1 … cn` becomes `c1 c2 op c3 op … cn op`, a left fold as the spec's pseudocode does, so
+//! the stack stays shallow however wide a node is.
+
+use glam::{DAffine3, DVec3};
+use smallvec::SmallVec;
+
+use super::shapes::Shape;
+use super::tree::{BoolKind, Frame, NodeId, NodeKind, SmoothKind, Tree};
+use crate::error::{Error, Result};
+use crate::geom::Aabb;
+
+/// One primitive, placed in the world.
+#[derive(Clone, Debug)]
+pub(crate) struct Leaf {
+    pub shape: Shape,
+    /// World → local.
+    pub to_local: DAffine3,
+    /// Local → world.
+    pub to_world: DAffine3,
+    pub identity: bool,
+    /// World distance per local distance (σ of the frame: a lower bound on the stretch).
+    pub factor: f64,
+    /// Largest over smallest stretch of the frame.
+    pub condition: f64,
+    pub material: u32,
+}
+
+/// A binary combination of the two values on top of the stack (`a` below `b`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Op {
+    Union,
+    Intersect,
+    /// `a` minus `b`.
+    Subtract,
+    /// A smooth variant with `k` in world units.
+    Smooth {
+        op: BoolKind,
+        kind: SmoothKind,
+        k: f64,
+    },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Instr {
+    /// Push the value of `leaves[i]`.
+    Leaf(u32),
+    /// Push `+∞`: the empty set.
+    Empty,
+    Op(Op),
+}
+
+/// A conservative bound on where a field is small: `{p : f(p) ≤ c}` lies inside
+/// `bbox.expanded(alpha · c)` for every `c ≥ 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Bound {
+    pub bbox: Aabb,
+    pub alpha: f64,
+}
+
+impl Bound {
+    /// The box holding `{f ≤ c}`.
+    pub(crate) fn at(&self, c: f64) -> Aabb {
+        expand(&self.bbox, self.alpha * c)
+    }
+}
+
+/// The flattened, evaluable form of a (sub)tree.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Program {
+    pub instrs: Vec<Instr>,
+    pub leaves: Vec<Leaf>,
+    /// The deepest the value stack gets.
+    pub depth: usize,
+}
+
+/// Points per batch: big enough to amortise the instruction dispatch, small enough that the
+/// stack slots stay in L1.
+const CHUNK: usize = 128;
+
+/// Reusable buffers for batch evaluation; one per thread.
+#[derive(Debug, Default)]
+pub(crate) struct Scratch {
+    vals: Vec<f64>,
+    mats: Vec<u32>,
+    local: Vec<DVec3>,
+}
+
+impl Program {
+    /// Flattens the subtree at `root`, whose parent frame is `parent`.
+    pub(crate) fn compile(tree: &Tree, root: NodeId, parent: Frame) -> Result<Program> {
+        enum Work {
+            Visit(NodeId, Frame),
+            Emit(Op),
+        }
+        let mut prog = Program::default();
+        let mut work = vec![Work::Visit(root, parent)];
+        let mut depth = 0usize;
+        while let Some(w) = work.pop() {
+            match w {
+                Work::Emit(op) => {
+                    prog.instrs.push(Instr::Op(op));
+                    depth -= 1;
+                }
+                Work::Visit(id, parent) => {
+                    let node = tree.node(id);
+                    let frame = parent.child(&node.transform);
+                    if !(frame.sigma > 0.0 && frame.sigma_max.is_finite()) {
+                        return Err(singular());
+                    }
+                    match &node.kind {
+                        NodeKind::Leaf { shape, material } => {
+                            let to_local = frame.to_world.inverse();
+                            if !(to_local.is_finite() && frame.to_world.is_finite()) {
+                                return Err(singular());
+                            }
+                            prog.instrs.push(Instr::Leaf(prog.leaves.len() as u32));
+                            prog.leaves.push(Leaf {
+                                shape: shape.clone(),
+                                to_local,
+                                to_world: frame.to_world,
+                                identity: frame.to_world == DAffine3::IDENTITY,
+                                factor: frame.sigma,
+                                condition: frame.condition(),
+                                material: *material,
+                            });
+                            depth += 1;
+                            prog.depth = prog.depth.max(depth);
+                        }
+                        NodeKind::Op {
+                            op,
+                            smooth,
+                            children,
+                        } => {
+                            if children.is_empty() {
+                                prog.instrs.push(Instr::Empty);
+                                depth += 1;
+                                prog.depth = prog.depth.max(depth);
+                                continue;
+                            }
+                            let code = match smooth {
+                                None => match op {
+                                    BoolKind::Union => Op::Union,
+                                    BoolKind::Intersect => Op::Intersect,
+                                    BoolKind::Subtract => Op::Subtract,
+                                },
+                                // Smoothing constants to world units (the blends are
+                                // homogeneous of degree one in (distance, 1/k) resp. (distance, k)).
+                                Some((kind, k)) => Op::Smooth {
+                                    op: *op,
+                                    kind: *kind,
+                                    k: match kind {
+                                        SmoothKind::Exponential => k / frame.sigma,
+                                        SmoothKind::Polynomial => k * frame.sigma,
+                                    },
+                                },
+                            };
+                            // Pushed in reverse so they pop as c1 c2 op c3 op … cn op.
+                            for (i, &c) in children.iter().enumerate().rev() {
+                                if i > 0 {
+                                    work.push(Work::Emit(code));
+                                }
+                                work.push(Work::Visit(c, frame));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(prog)
+    }
+
+    /// The value at one point.
+    pub(crate) fn eval(&self, p: DVec3) -> f64 {
+        self.eval_scalar::<false>(p).0
+    }
+
+    /// The value at one point and the material of the primitive that decides it.
+    pub(crate) fn eval_material(&self, p: DVec3) -> (f64, u32) {
+        self.eval_scalar::<true>(p)
+    }
+
+    fn eval_scalar<const MAT: bool>(&self, p: DVec3) -> (f64, u32) {
+        let mut stack: SmallVec<[(f64, u32); 16]> = SmallVec::new();
+        for ins in &self.instrs {
+            match *ins {
+                Instr::Leaf(i) => {
+                    let l = &self.leaves[i as usize];
+                    let q = if l.identity {
+                        p
+                    } else {
+                        l.to_local.transform_point3(p)
+                    };
+                    stack.push((l.shape.distance(q) * l.factor, l.material));
+                }
+                Instr::Empty => stack.push((f64::INFINITY, 0)),
+                Instr::Op(op) => {
+                    let (Some(b), Some(a)) = (stack.pop(), stack.pop()) else {
+                        return (f64::INFINITY, 0);
+                    };
+                    stack.push(if MAT {
+                        combine_material(op, a, b)
+                    } else {
+                        (combine(op, a.0, b.0), 0)
+                    });
+                }
+            }
+        }
+        stack.pop().unwrap_or((f64::INFINITY, 0))
+    }
+
+    /// Values at many points into `out` (same length).
+    pub(crate) fn eval_batch(&self, scratch: &mut Scratch, points: &[DVec3], out: &mut [f64]) {
+        for (p, o) in points.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
+            self.run_chunk::<false>(scratch, p, o, &mut []);
+        }
+    }
+
+    /// Values and deciding materials at many points.
+    pub(crate) fn eval_batch_material(
+        &self,
+        scratch: &mut Scratch,
+        points: &[DVec3],
+        out: &mut [f64],
+        materials: &mut [u32],
+    ) {
+        for ((p, o), m) in points
+            .chunks(CHUNK)
+            .zip(out.chunks_mut(CHUNK))
+            .zip(materials.chunks_mut(CHUNK))
+        {
+            self.run_chunk::<true>(scratch, p, o, m);
+        }
+    }
+
+    fn run_chunk<const MAT: bool>(
+        &self,
+        s: &mut Scratch,
+        points: &[DVec3],
+        out: &mut [f64],
+        materials: &mut [u32],
+    ) {
+        let n = points.len();
+        let slots = self.depth.max(1);
+        if s.vals.len() < slots * CHUNK {
+            s.vals.resize(slots * CHUNK, 0.0);
+        }
+        if MAT && s.mats.len() < slots * CHUNK {
+            s.mats.resize(slots * CHUNK, 0);
+        }
+        if s.local.len() < CHUNK {
+            s.local.resize(CHUNK, DVec3::ZERO);
+        }
+        let mut top = 0usize;
+        for ins in &self.instrs {
+            match *ins {
+                Instr::Leaf(i) => {
+                    let l = &self.leaves[i as usize];
+                    let dst = &mut s.vals[top * CHUNK..top * CHUNK + n];
+                    if l.identity {
+                        l.shape.distances(points, dst);
+                    } else {
+                        let local = &mut s.local[..n];
+                        for (q, &p) in local.iter_mut().zip(points) {
+                            *q = l.to_local.transform_point3(p);
+                        }
+                        l.shape.distances(local, dst);
+                    }
+                    if l.factor != 1.0 {
+                        for d in dst.iter_mut() {
+                            *d *= l.factor;
+                        }
+                    }
+                    if MAT {
+                        s.mats[top * CHUNK..top * CHUNK + n].fill(l.material);
+                    }
+                    top += 1;
+                }
+                Instr::Empty => {
+                    s.vals[top * CHUNK..top * CHUNK + n].fill(f64::INFINITY);
+                    if MAT {
+                        s.mats[top * CHUNK..top * CHUNK + n].fill(0);
+                    }
+                    top += 1;
+                }
+                Instr::Op(op) => {
+                    if top < 2 {
+                        // Unreachable for a compiled program; stay total anyway.
+                        continue;
+                    }
+                    top -= 1;
+                    let (lo, hi) = s.vals.split_at_mut(top * CHUNK);
+                    let a = &mut lo[(top - 1) * CHUNK..(top - 1) * CHUNK + n];
+                    let b = &hi[..n];
+                    if MAT {
+                        let (mlo, mhi) = s.mats.split_at_mut(top * CHUNK);
+                        let ma = &mut mlo[(top - 1) * CHUNK..(top - 1) * CHUNK + n];
+                        let mb = &mhi[..n];
+                        for i in 0..n {
+                            let (d, m) = combine_material(op, (a[i], ma[i]), (b[i], mb[i]));
+                            a[i] = d;
+                            ma[i] = m;
+                        }
+                    } else {
+                        combine_slices(op, a, b);
+                    }
+                }
+            }
+        }
+        if top == 0 {
+            out.fill(f64::INFINITY);
+            materials.fill(0);
+            return;
+        }
+        out.copy_from_slice(&s.vals[(top - 1) * CHUNK..(top - 1) * CHUNK + n]);
+        if MAT {
+            materials.copy_from_slice(&s.mats[(top - 1) * CHUNK..(top - 1) * CHUNK + n]);
+        }
+    }
+
+    /// The conservative bound of the whole program (see [`Bound`]).
+    pub(crate) fn bound(&self) -> Bound {
+        let mut stack: Vec<Bound> = Vec::with_capacity(self.depth);
+        for ins in &self.instrs {
+            match *ins {
+                Instr::Leaf(i) => {
+                    let l = &self.leaves[i as usize];
+                    stack.push(Bound {
+                        bbox: map_box(&l.to_world, &l.shape.local_bounds()),
+                        alpha: l.condition,
+                    });
+                }
+                Instr::Empty => stack.push(Bound {
+                    bbox: Aabb::EMPTY,
+                    alpha: 1.0,
+                }),
+                Instr::Op(op) => {
+                    let (Some(b), Some(a)) = (stack.pop(), stack.pop()) else {
+                        break;
+                    };
+                    stack.push(combine_bounds(op, a, b));
+                }
+            }
+        }
+        stack.pop().unwrap_or(Bound {
+            bbox: Aabb::EMPTY,
+            alpha: 1.0,
+        })
+    }
+
+    /// The material ids the program can answer.
+    pub(crate) fn materials(&self) -> impl Iterator<Item = u32> + '_ {
+        self.leaves.iter().map(|l| l.material)
+    }
+}
+
+fn singular() -> Error {
+    Error::Scene {
+        json_path: "$".into(),
+        message: "the nested transforms compose to a map that cannot be inverted in f64 \
+                  (scales too small or too large)"
+            .into(),
+    }
+}
+
+/// How far below `min(a, b)` one smooth fold can reach (and above `max` for the intersection).
+fn smooth_margin(kind: SmoothKind, k: f64) -> f64 {
+    match kind {
+        SmoothKind::Exponential => std::f64::consts::LN_2 / k,
+        SmoothKind::Polynomial => 0.25 * k,
+    }
+}
+
+fn combine_bounds(op: Op, a: Bound, b: Bound) -> Bound {
+    let alpha = a.alpha.max(b.alpha);
+    let (op, m) = match op {
+        Op::Union => (BoolKind::Union, 0.0),
+        Op::Intersect => (BoolKind::Intersect, 0.0),
+        Op::Subtract => (BoolKind::Subtract, 0.0),
+        Op::Smooth { op, kind, k } => (op, smooth_margin(kind, k)),
+    };
+    // f ≤ c implies the deciding children are ≤ c + m.
+    let (ab, bb) = (a.at(m), b.at(m));
+    let bbox = match op {
+        BoolKind::Union => ab.union(&bb),
+        BoolKind::Intersect => ab.intersection(&bb),
+        BoolKind::Subtract => ab,
+    };
+    Bound { bbox, alpha }
+}
+
+/// Expands a box by `m` on every side; empty stays empty, infinite stays infinite.
+pub(crate) fn expand(b: &Aabb, m: f64) -> Aabb {
+    if b.is_empty() || m == 0.0 {
+        return *b;
+    }
+    Aabb::new(b.min - DVec3::splat(m), b.max + DVec3::splat(m))
+}
+
+/// The world box of a local box; anything unbounded maps to everything (a rotated half-space
+/// has no tighter axis-aligned box).
+pub(crate) fn map_box(m: &DAffine3, b: &Aabb) -> Aabb {
+    if b.is_empty() {
+        return *b;
+    }
+    if !(b.min.is_finite() && b.max.is_finite()) {
+        return Aabb::new(DVec3::NEG_INFINITY, DVec3::INFINITY);
+    }
+    let mut out = Aabb::EMPTY;
+    for i in 0..8 {
+        let c = DVec3::new(
+            if i & 1 == 0 { b.min.x } else { b.max.x },
+            if i & 2 == 0 { b.min.y } else { b.max.y },
+            if i & 4 == 0 { b.min.z } else { b.max.z },
+        );
+        out.grow(m.transform_point3(c));
+    }
+    out
+}
+
+/// Smooth minimum, overflow-free: `−ln(e^(−k·a) + e^(−k·b)) / k` rewritten around the
+/// smaller value as `m − ln(1 + e^(−k·|a−b|)) / k`.
+#[inline]
+fn smin(kind: SmoothKind, k: f64, a: f64, b: f64) -> f64 {
+    match kind {
+        SmoothKind::Exponential => {
+            let diff = (a - b).abs();
+            if diff.is_nan() {
+                // Both infinite (empty operands): nothing to blend.
+                return a.min(b);
+            }
+            a.min(b) - (-k * diff).exp().ln_1p() / k
+        }
+        SmoothKind::Polynomial => {
+            let h = (0.5 + 0.5 * (b - a) / k).clamp(0.0, 1.0);
+            if !h.is_finite() || (b - a).abs() >= k {
+                return a.min(b);
+            }
+            b + (a - b) * h - k * h * (1.0 - h)
+        }
+    }
+}
+
+#[inline]
+fn smax(kind: SmoothKind, k: f64, a: f64, b: f64) -> f64 {
+    -smin(kind, k, -a, -b)
+}
+
+#[inline]
+pub(crate) fn combine(op: Op, a: f64, b: f64) -> f64 {
+    match op {
+        Op::Union => a.min(b),
+        Op::Intersect => a.max(b),
+        Op::Subtract => a.max(-b),
+        Op::Smooth { op, kind, k } => match op {
+            BoolKind::Union => smin(kind, k, a, b),
+            BoolKind::Intersect => smax(kind, k, a, b),
+            BoolKind::Subtract => smax(kind, k, a, -b),
+        },
+    }
+}
+
+/// The combined value and the material of the operand that decides it (the nearer one for a
+/// union, the farther for an intersection, the subtracted one where the cut decides).
+#[inline]
+fn combine_material(op: Op, a: (f64, u32), b: (f64, u32)) -> (f64, u32) {
+    let base = match op {
+        Op::Union => BoolKind::Union,
+        Op::Intersect => BoolKind::Intersect,
+        Op::Subtract => BoolKind::Subtract,
+        Op::Smooth { op, .. } => op,
+    };
+    let m = match base {
+        BoolKind::Union => {
+            if a.0 <= b.0 {
+                a.1
+            } else {
+                b.1
+            }
+        }
+        BoolKind::Intersect => {
+            if a.0 >= b.0 {
+                a.1
+            } else {
+                b.1
+            }
+        }
+        BoolKind::Subtract => {
+            if a.0 >= -b.0 {
+                a.1
+            } else {
+                b.1
+            }
+        }
+    };
+    (combine(op, a.0, b.0), m)
+}
+
+fn combine_slices(op: Op, a: &mut [f64], b: &[f64]) {
+    match op {
+        Op::Union => a.iter_mut().zip(b).for_each(|(x, &y)| *x = x.min(y)),
+        Op::Intersect => a.iter_mut().zip(b).for_each(|(x, &y)| *x = x.max(y)),
+        Op::Subtract => a.iter_mut().zip(b).for_each(|(x, &y)| *x = x.max(-y)),
+        _ => a
+            .iter_mut()
+            .zip(b)
+            .for_each(|(x, &y)| *x = combine(op, *x, y)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn smooth_union_is_stable_and_matches_the_spec() {
+        let k: f64 = 8.0;
+        for &(a, b) in &[(0.1f64, 0.3f64), (-0.2, 0.05), (1.0, 1.0)] {
+            let spec: f64 = -((-k * a).exp() + (-k * b).exp()).ln() / k;
+            let ours = smin(SmoothKind::Exponential, k, a, b);
+            assert!((spec - ours).abs() < 1e-12, "{a} {b}: {spec} vs {ours}");
+        }
+        // The naive form overflows here; ours returns min − ln2/k.
+        let big = smin(SmoothKind::Exponential, 1000.0, -5.0, -5.0);
+        assert!((big - (-5.0 - std::f64::consts::LN_2 / 1000.0)).abs() < 1e-12);
+        assert_eq!(smin(SmoothKind::Exponential, 10.0, 1e300, 1e-3), 1e-3);
+    }
+
+    #[test]
+    fn polynomial_smin_matches_seed_000() {
+        let k: f64 = 0.5;
+        for &(left, right) in &[(0.1f64, 0.3f64), (-0.2, 0.05), (1.0, 2.0)] {
+            let h: f64 = (0.5 + (right - left) / (2.0 * k)).clamp(0.0, 1.0);
+            let seed = right + (left - right) * h - k * h * (1.0 - h);
+            let ours = smin(SmoothKind::Polynomial, k, left, right);
+            assert!((seed - ours).abs() < 1e-12);
+        }
+    }
+}

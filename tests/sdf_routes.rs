@@ -1,0 +1,96 @@
+//! Both routes for every example scene: the baked mesh is a closed 2-manifold, the BSP route's
+//! volume agrees with it within the tessellation tolerance, and the SDF's sign agrees with the
+//! BSP solid's point containment everywhere farther than two cells from the surface.
+
+mod common;
+
+use bspcsg::{BakeOptions, Containment, Scene, TessellationOptions};
+use common::{Topology, vertices_are_manifold};
+use glam::DVec3;
+
+const TOLERANCE: f64 = 0.01;
+const CELL: f64 = 0.05;
+
+fn check(name: &str) {
+    let path = format!("{}/examples/scenes/{name}.json", env!("CARGO_MANIFEST_DIR"));
+    let scene = Scene::from_path(&path).unwrap();
+
+    let mesh = scene.bake(&BakeOptions::with_cell(CELL)).unwrap();
+    let t = Topology::of(&mesh);
+    t.assert_closed_manifold(name);
+    assert!(vertices_are_manifold(&mesh), "{name}");
+    assert!(
+        mesh.sources
+            .iter()
+            .all(|&s| (s as usize) < scene.materials().len())
+    );
+
+    let solid = scene
+        .to_solid(&TessellationOptions {
+            tolerance: Some(TOLERANCE),
+            cell: Some(CELL),
+        })
+        .unwrap();
+    let (v_sdf, v_bsp) = (mesh.volume(), solid.volume());
+    // Every surface point of either route lies within the tolerance of the true surface (the
+    // marching-cubes cell is small enough that its chamfers stay below it), so the volumes
+    // differ by at most area × tolerance.
+    let bound = mesh.area() * TOLERANCE;
+    println!(
+        "{name}: sdf {v_sdf:.5}, bsp {v_bsp:.5}, |diff| {:.2e} ≤ {bound:.2e}",
+        (v_sdf - v_bsp).abs()
+    );
+    assert!((v_sdf - v_bsp).abs() <= bound, "{name}: {v_sdf} vs {v_bsp}");
+    // Both routes carry the scene's materials on their source ids.
+    let mut bsp_sources: Vec<u32> = solid.polygons().iter().map(|p| p.source()).collect();
+    bsp_sources.sort_unstable();
+    bsp_sources.dedup();
+    let mut sdf_sources = mesh.sources.clone();
+    sdf_sources.sort_unstable();
+    sdf_sources.dedup();
+    assert_eq!(bsp_sources, sdf_sources, "{name}: materials");
+
+    let classifier = solid.classifier();
+    let bb = scene.bounds().expanded(0.3);
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut rnd = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut tested, mut agree) = (0, 0);
+    for _ in 0..3000 {
+        let p = bb.min + (bb.max - bb.min) * DVec3::new(rnd(), rnd(), rnd());
+        let d = scene.distance(p);
+        // |d| never overestimates the distance, so |d| > 2h means at least two cells away.
+        if d.abs() <= 2.0 * CELL {
+            continue;
+        }
+        tested += 1;
+        let inside = classifier.classify(p) == Containment::Inside;
+        if inside == (d < 0.0) {
+            agree += 1;
+        } else {
+            println!("{name}: disagree at {p}: d = {d}");
+        }
+    }
+    println!("{name}: {agree}/{tested} points agree");
+    assert!(tested > 1000);
+    assert_eq!(agree, tested, "{name}");
+}
+
+#[test]
+fn mechanical_part() {
+    check("mechanical_part");
+}
+
+#[test]
+fn organic_blend() {
+    check("organic_blend");
+}
+
+#[test]
+fn extruded_profile() {
+    check("extruded_profile");
+}
