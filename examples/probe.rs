@@ -1,55 +1,87 @@
-use bspcsg::Solid;
-use glam::{DQuat, DVec3};
+use bspcsg::{
+    Solid,
+    glam::{DQuat, DVec3},
+    read_mesh,
+};
 use std::time::Instant;
-fn lcg(s: &mut u64) -> f64 {
-    *s = s
-        .wrapping_mul(6364136223846793005)
-        .wrapping_add(1442695040888963407);
-    ((*s >> 11) as f64) / ((1u64 << 53) as f64)
+fn load(name: &str) -> Solid {
+    let p = format!("/work/shared/models/{name}.obj");
+    Solid::from_mesh(&read_mesh(p.as_ref()).unwrap()).unwrap()
 }
-fn prim(s: &mut u64) -> Solid {
-    let k = (lcg(s) * 4.0) as u32;
-    let seg = 5 + (lcg(s) * 20.0) as u32;
-    let sz = |s: &mut u64| 0.3 + 1.2 * lcg(s);
-    let p = match k {
-        0 => Solid::cuboid(DVec3::new(sz(s), sz(s), sz(s))),
-        1 => Solid::sphere(sz(s) * 0.7, seg, seg / 2 + 2),
-        2 => Solid::cylinder(sz(s) * 0.6, sz(s), seg),
-        _ => Solid::frustum(sz(s) * 0.6, sz(s) * 0.3, sz(s), seg),
+fn check(label: &str, a: &Solid, b: &Solid) {
+    let t = Instant::now();
+    let (u, i, d) = (a | b, a & b, a - b);
+    let dt = t.elapsed().as_secs_f64() * 1e3;
+    let (va, vb) = (a.volume(), b.volume());
+    let ie = (u.volume() + i.volume() - va - vb).abs() / va.max(vb);
+    let de = (d.volume() - (va - i.volume())).abs() / va.max(vb);
+    let mut line = format!("{label:28} {dt:8.1} ms  ie {ie:.1e} de {de:.1e}");
+    for (n, s) in [("U", &u), ("I", &i), ("D", &d)] {
+        let t = Instant::now();
+        let m = s.to_mesh();
+        let r = m.report();
+        let verr = (m.volume() - s.volume()).abs() / va.max(vb);
+        line += &format!(
+            " | {n}: {} tris {} {:.0}ms vΔ{:.0e}{}",
+            m.triangle_count(),
+            if r.is_closed_manifold() { "ok" } else { "BAD" },
+            t.elapsed().as_secs_f64() * 1e3,
+            verr,
+            if r.is_closed_manifold() {
+                String::new()
+            } else {
+                format!(" [{}]", r.to_string().replace('\n', "; "))
+            }
+        );
     }
-    .unwrap();
-    let axis = DVec3::new(lcg(s) - 0.5, lcg(s) - 0.5, lcg(s) - 0.5).normalize();
-    p.rotate(DQuat::from_axis_angle(axis, lcg(s) * 6.3))
-        .unwrap()
-        .translate(DVec3::new(lcg(s) - 0.5, lcg(s) - 0.5, lcg(s) - 0.5) * 1.6)
-        .unwrap()
+    println!("{line}");
 }
 fn main() {
-    let n: usize = std::env::args()
-        .nth(1)
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(200);
-    let mut s = 12345u64;
-    let (mut bad, mut total) = (0, 0);
-    let t0 = Instant::now();
-    for case in 0..n {
-        let a = prim(&mut s);
-        let b = prim(&mut s);
-        for (name, r) in [("union", &a | &b), ("inter", &a & &b), ("diff", &a - &b)] {
-            total += 1;
-            let m = r.to_mesh();
-            let rep = m.report();
-            let vol_err = (m.volume() - r.volume()).abs() / a.volume().max(b.volume());
-            if !rep.is_closed_manifold() || vol_err > 1e-9 {
-                bad += 1;
-                if bad <= 10 {
-                    println!(
-                        "case {case} {name}: vol_err {vol_err:.2e} {}",
-                        rep.to_string().replace('\n', " | ")
-                    );
-                }
-            }
+    let names: Vec<String> = std::env::args().skip(1).collect();
+    for name in ["spot", "fandisk", "rocker-arm"] {
+        if !names.is_empty() && !names.contains(&name.to_string()) {
+            continue;
         }
+        let a = load(name);
+        let bb = a.bbox();
+        let d = bb.diagonal();
+        let b = a
+            .clone()
+            .rotate(DQuat::from_axis_angle(
+                DVec3::new(0.3, 1.0, 0.2).normalize(),
+                0.4,
+            ))
+            .unwrap()
+            .translate(bb.size() * 0.13)
+            .unwrap();
+        check(&format!("{name} op moved"), &a, &b);
+        check(&format!("{name} op itself"), &a, &a);
+        let boxx = Solid::cuboid(bb.size() * 0.6)
+            .unwrap()
+            .translate(bb.center() + DVec3::splat(d * 0.05))
+            .unwrap();
+        check(&format!("{name} op box"), &a, &boxx);
+        let sph = Solid::sphere(d * 0.3, 48, 24)
+            .unwrap()
+            .translate(bb.center())
+            .unwrap();
+        check(&format!("{name} op sphere"), &a, &sph);
     }
-    println!("{bad}/{total} bad in {:.1}s", t0.elapsed().as_secs_f64());
+    if names.is_empty() || names.contains(&"havoc".to_string()) {
+        let (l, r) = (load("Havocglass8_left"), load("Havocglass8_right"));
+        check("havocglass l op r", &l, &r);
+        println!(
+            "   expected union 3.05989e6 inter 68524.4: got {:.6e} {:.6}",
+            (&l | &r).volume(),
+            (&l & &r).volume()
+        );
+    }
+    if names.is_empty() || names.contains(&"cray".to_string()) {
+        let (l, r) = (load("Cray_left"), load("Cray_right"));
+        check("cray l op r", &l, &r);
+        println!(
+            "   expected l-r 9.82418622e11: got {:.9e}",
+            (&l - &r).volume()
+        );
+    }
 }

@@ -34,7 +34,7 @@
 //! Every boolean uses one plane-side epsilon: a vertex within `eps` of a plane lies on it, both
 //! when polygons are classified and when they are split.
 //!
-//! `eps = max(1e-9 × d, 2⁻⁴⁰ × m)`, where `d` is the diagonal of the region where the two
+//! `eps = max(1e-12 × d, 2⁻⁴⁰ × m)`, where `d` is the diagonal of the region where the two
 //! operands' bounding boxes meet and `m` the largest coordinate magnitude in it (the floor keeps
 //! `eps` above rounding error far from the origin). Scaling both operands by any factor scales
 //! `eps` with them, so results at scale 10⁻⁶, 1 and 10⁶ are the same up to that scale; a huge
@@ -69,10 +69,10 @@ pub use geom::{Aabb, Plane, Side, Tolerance};
 pub use io::{Format, ParseFormatError, read_mesh, read_mesh_as, write_mesh, write_mesh_as};
 pub use mesh::{FromMeshOptions, Material, Mesh, MeshReport, ShellReport};
 pub use polygon::Polygon;
-pub use primitives::{MAX_SEGMENTS, MIN_SEGMENTS, segments_for_tolerance};
+pub use primitives::{MAX_POLYGONS, MAX_SEGMENTS, MIN_SEGMENTS, segments_for_tolerance};
 pub use sdf::{
-    BakeOptions, FALLBACK_COLOR, MAX_GRID_CELLS, MAX_POLYGON_POINTS, MAX_SCENE_MAGNITUDE,
-    RenderProfile, Scene, TessellationOptions,
+    BakeOptions, FALLBACK_COLOR, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL,
+    MAX_POLYGON_POINTS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene, TessellationOptions,
 };
 pub use solid::{Containment, PointClassifier, Solid};
 

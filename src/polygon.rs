@@ -131,6 +131,9 @@ impl Polygon {
 
     /// Where the polygon lies relative to `plane`, vertices within `eps` counting as on it.
     pub(crate) fn side(&self, plane: &Plane, eps: f64) -> Side {
+        if self.plane.is_same_or_flipped(plane) {
+            return Side::Coplanar;
+        }
         let (mut front, mut back) = (false, false);
         for &v in &self.vertices {
             match plane.side_of(v, eps) {
@@ -147,10 +150,15 @@ impl Polygon {
         }
     }
 
-    /// Classifies against `plane` and, where the polygon spans it, cuts it in two. Vertices
+    /// Classifies against `plane` and, where the polygon spans it, cuts it in two. A polygon is
+    /// coplanar with its own plane whatever its vertices say (see [`Plane::is_same_or_flipped`]).
+    /// Vertices
     /// within `eps` of the plane go to both pieces; an edge from a front to a back vertex is cut
     /// at a point computed the same way, bit for bit, by both polygons that share the edge.
     pub(crate) fn split(&self, plane: &Plane, eps: f64) -> Split {
+        if self.plane.is_same_or_flipped(plane) {
+            return Split::Coplanar;
+        }
         let n = self.vertices.len();
         let mut dist: SmallVec<[f64; 8]> = SmallVec::with_capacity(n);
         let (mut any_front, mut any_back) = (false, false);

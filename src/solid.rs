@@ -203,9 +203,8 @@ impl Solid {
                     vs.reverse();
                 }
                 // The plane maps exactly by the inverse transpose; Newell would only re-derive it.
-                let foot = p.plane().normal * p.plane().offset;
                 let plane = Plane::from_point_normal(
-                    map.transform_point3(foot),
+                    map.transform_point3(p.plane().anchor),
                     normal_map * p.plane().normal,
                 )?;
                 Some(Polygon::with_plane(vs, plane, p.source()))
@@ -223,11 +222,7 @@ impl Solid {
             .into_iter()
             .map(|p| {
                 let vs: Vertices = p.vertices().iter().map(|&v| q * v + t).collect();
-                let normal = q * p.plane().normal;
-                let plane = Plane {
-                    normal,
-                    offset: p.plane().offset + normal.dot(t),
-                };
+                let plane = Plane::through(q * p.plane().anchor + t, q * p.plane().normal);
                 Polygon::with_plane(vs, plane, p.source())
             })
             .collect();

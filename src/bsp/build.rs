@@ -229,10 +229,7 @@ impl Node {
 
     fn stub(content: Aabb) -> Node {
         Node {
-            plane: Plane {
-                normal: DVec3::X,
-                offset: 0.0,
-            },
+            plane: Plane::through(DVec3::ZERO, DVec3::X),
             kind: Kind::Stub,
             front: Link::Leaf(Label::Outside),
             back: Link::Leaf(Label::Outside),
@@ -271,7 +268,7 @@ fn cell_plane(ids: &[u32], arena: &Arena, eps: f64) -> Option<Plane> {
         if spanning * 2 <= n {
             let mut normal = DVec3::ZERO;
             normal[axis] = 1.0;
-            return Some(Plane { normal, offset: at });
+            return Some(Plane::through(normal * at, normal));
         }
     }
     None

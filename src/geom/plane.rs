@@ -1,13 +1,21 @@
 use glam::DVec3;
 
-/// An oriented plane: the points `x` with `normal · x = offset`; `normal` has unit length and
-/// points to the front (outside) half-space.
+/// An oriented plane: the points `x` with `normal · (x − anchor) = 0`; `normal` has unit length
+/// and points to the front (outside) half-space.
+///
+/// Distances are measured from `anchor`, a point on the plane near the polygon it came from,
+/// not from the origin: far from the origin `normal · x − offset` loses the low digits of both
+/// terms (about 3·10⁻¹² at 13 000), while `x − anchor` is exact for nearby points. That matters
+/// where two faces meet at a tiny angle, as an edge's cut point then moves by the distance
+/// error divided by the angle. `offset = normal · anchor` is kept for comparisons.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Plane {
     /// Unit normal, pointing to the front side.
     pub normal: DVec3,
-    /// Signed distance of the plane from the origin along `normal`.
+    /// Signed distance of the plane from the origin along `normal` (`normal · anchor`).
     pub offset: f64,
+    /// A point on the plane that distances are measured from.
+    pub anchor: DVec3,
 }
 
 /// Where a point or polygon lies relative to a plane, within a tolerance.
@@ -53,25 +61,28 @@ impl Plane {
             prev = cur;
         }
         let normal = n.try_normalize()?;
-        Some(Plane {
-            normal,
-            offset: normal.dot(centroid),
-        })
+        Some(Plane::through(centroid, normal))
     }
 
-    /// The plane through `point` with unit `normal`.
+    /// The plane through `point` with `normal` (normalised here); `None` for a zero or
+    /// non-finite normal.
     pub fn from_point_normal(point: DVec3, normal: DVec3) -> Option<Plane> {
-        let normal = normal.try_normalize()?;
-        Some(Plane {
+        Some(Plane::through(point, normal.try_normalize()?))
+    }
+
+    /// The plane through `anchor` with a unit `normal`.
+    pub(crate) fn through(anchor: DVec3, normal: DVec3) -> Plane {
+        Plane {
             normal,
-            offset: normal.dot(point),
-        })
+            offset: normal.dot(anchor),
+            anchor,
+        }
     }
 
     /// Signed distance of `p`: positive in front.
     #[inline]
     pub fn distance(&self, p: DVec3) -> f64 {
-        self.normal.dot(p) - self.offset
+        self.normal.dot(p - self.anchor)
     }
 
     /// Which side `p` lies on, `Coplanar` within `eps`.
@@ -93,7 +104,19 @@ impl Plane {
         Plane {
             normal: -self.normal,
             offset: -self.offset,
+            anchor: self.anchor,
         }
+    }
+
+    /// True when `other` is this very plane, facing either way: the same bits, as every
+    /// fragment of a polygon keeps its parent's plane. A polygon lies in its own plane by
+    /// definition, however far its vertices reach; testing its vertices instead could find a
+    /// huge polygon "spanning" its own plane by rounding and split it forever.
+    #[inline]
+    pub fn is_same_or_flipped(&self, other: &Plane) -> bool {
+        self.anchor == other.anchor
+            && ((self.normal == other.normal && self.offset == other.offset)
+                || (self.normal == -other.normal && self.offset == -other.offset))
     }
 
     /// True when both planes are the same oriented plane within `eps` at points within

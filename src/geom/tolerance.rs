@@ -12,8 +12,11 @@ pub struct Tolerance {
 }
 
 impl Tolerance {
-    /// The plane-side epsilon as a fraction of the interaction region's diagonal.
-    pub const RELATIVE: f64 = 1e-9;
+    /// The plane-side epsilon as a fraction of the interaction region's diagonal. Small on
+    /// purpose: faces that really are 10⁻⁸ of the model apart must not be called coplanar, or
+    /// fragments get routed by a plane far from where its polygon lies; and with planes anchored
+    /// near their polygons (see [`crate::Plane`]) rounding stays near 10⁻¹⁶ of the model size.
+    pub const RELATIVE: f64 = 1e-12;
     /// The floor as a fraction of the largest coordinate magnitude in the region: about 8000
     /// units in the last place, well above the error of a plane evaluation or an edge split.
     pub const FLOOR_RELATIVE: f64 = 1.0 / (1u64 << 40) as f64;

@@ -12,7 +12,10 @@ use crate::polygon::Polygon;
 pub const MIN_SEGMENTS: u32 = 3;
 /// The most segments (or rings) a round primitive accepts: beyond this, polygons are smaller
 /// than any tolerance worth asking for and memory runs out first.
-pub const MAX_SEGMENTS: u32 = 1 << 16;
+pub const MAX_SEGMENTS: u32 = 1 << 14;
+/// The most polygons one primitive may have (segments × rings for spheres and tori), about
+/// 800 MB of polygons: a finer request is refused rather than exhausting memory.
+pub const MAX_POLYGONS: u64 = 1 << 22;
 
 /// How many segments a circle of `radius` needs so that no chord strays more than `tolerance`
 /// from the true circle: `⌈π / acos(1 − tolerance / radius)⌉`, at least [`MIN_SEGMENTS`].
@@ -32,7 +35,7 @@ pub fn segments_for_tolerance(radius: f64, tolerance: f64) -> Result<u32> {
         return Err(Error::param(
             "tolerance",
             tolerance,
-            "is too fine for this radius (more than 65536 segments)",
+            "is too fine for this radius (more than 16384 segments)",
         ));
     }
     Ok((n as u32).max(MIN_SEGMENTS))
@@ -48,6 +51,19 @@ pub(crate) fn face(vertices: &[glam::DVec3]) -> Result<Polygon> {
     ))
 }
 
+/// Refuses a round primitive with more than [`MAX_POLYGONS`] polygons.
+pub(crate) fn budget(segments: u32, rings: u32) -> Result<()> {
+    if segments as u64 * rings as u64 > MAX_POLYGONS {
+        Err(Error::param(
+            "rings",
+            rings as f64,
+            "times segments exceeds the 4194304-polygon budget of one primitive",
+        ))
+    } else {
+        Ok(())
+    }
+}
+
 pub(crate) fn positive(name: &'static str, value: f64) -> Result<()> {
     if value.is_finite() && value > 0.0 {
         Ok(())
@@ -60,7 +76,7 @@ pub(crate) fn count(name: &'static str, value: u32, min: u32) -> Result<()> {
     if value < min {
         Err(Error::param(name, value as f64, "is too small"))
     } else if value > MAX_SEGMENTS {
-        Err(Error::param(name, value as f64, "must be at most 65536"))
+        Err(Error::param(name, value as f64, "must be at most 16384"))
     } else {
         Ok(())
     }

@@ -4,7 +4,7 @@ use std::f64::consts::TAU;
 
 use glam::DVec3;
 
-use super::{count, face, positive};
+use super::{budget, count, face, positive};
 use crate::error::{Error, Result};
 use crate::polygon::Polygon;
 use crate::solid::Solid;
@@ -21,6 +21,7 @@ impl Solid {
         positive("radius", radius)?;
         count("segments", segments, 3)?;
         count("rings", rings, 2)?;
+        budget(segments, rings)?;
         let profile: Vec<(f64, f64)> = (0..=rings)
             .map(|i| {
                 if i == 0 {
@@ -76,6 +77,7 @@ impl Solid {
         }
         count("segments", segments, 3)?;
         count("rings", rings, 3)?;
+        budget(segments, rings)?;
         // Round the tube downward on its outer side, so faces point out of the tube.
         let profile: Vec<(f64, f64)> = (0..rings)
             .map(|k| {

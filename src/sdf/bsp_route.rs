@@ -130,7 +130,7 @@ impl Ctx<'_> {
         else {
             return Ok(Solid::empty());
         };
-        let mut mesh = march(&program, grid, opts.refine_steps);
+        let mut mesh = march(&program, grid, opts.refine_steps)?;
         super::assign_sources(&program, &mut mesh);
         let polygons = (0..mesh.triangle_count())
             .filter_map(|t| Polygon::new(mesh.triangle(t).as_slice(), mesh.sources[t]))

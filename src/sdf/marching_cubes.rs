@@ -16,6 +16,7 @@
 
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -74,6 +75,10 @@ impl BakeOptions {
 /// cells, not with the grid's volume, but a grid this fine around a large surface still needs
 /// gigabytes.
 pub const MAX_GRID_CELLS: u32 = 1 << 14;
+
+/// The most cells a grid may have in all (1024³): a large surface in a grid this fine already
+/// makes tens of millions of triangles, so finer requests are refused before memory runs out.
+pub const MAX_GRID_TOTAL: u64 = 1 << 30;
 
 /// Leaf blocks are this many cells on a side; top-level blocks `LEAF << LEVELS`.
 const LEAF: usize = 8;
@@ -158,6 +163,13 @@ impl Grid {
                 ));
             }
             n[i] = cells as usize;
+        }
+        if n.iter().map(|&c| c as u64).product::<u64>() > MAX_GRID_TOTAL {
+            return Err(Error::param(
+                "cell",
+                cell,
+                "gives more than 1024³ cells in all; use a larger cell",
+            ));
         }
         let extent = DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64) * cell;
         let origin = region.center() - extent * 0.5;
@@ -255,8 +267,17 @@ struct Work {
     centres: Vec<(u32, [u32; 12], u8)>,
 }
 
+/// The most triangles one bake may make (about 2 GB of mesh). Cells bound the grid's volume,
+/// not its surface: a flat surface across a fine grid would otherwise exhaust memory.
+pub const MAX_BAKE_TRIANGLES: usize = 1 << 25;
+
 /// Bakes `program` over `grid` into a mesh (sources all 0; the caller assigns materials).
-pub(crate) fn march<S: Source + ?Sized>(source: &S, grid: Grid, refine_steps: u32) -> Mesh {
+/// Refused once the surface needs more than [`MAX_BAKE_TRIANGLES`] triangles.
+pub(crate) fn march<S: Source + ?Sized>(
+    source: &S,
+    grid: Grid,
+    refine_steps: u32,
+) -> crate::Result<Mesh> {
     let bbox = grid.bbox();
     let field = Field {
         source,
@@ -286,12 +307,16 @@ pub(crate) fn march<S: Source + ?Sized>(source: &S, grid: Grid, refine_steps: u3
     }
     // Deterministic output order whatever the traversal.
     tops.sort_unstable_by_key(|b| (b.lo[2], b.lo[1], b.lo[0]));
+    let made = AtomicUsize::new(0);
     let parts: Vec<Part> = tops
         .par_iter()
         .map_init(Work::default, |work, &b| {
             let mut part = Part::default();
             let mut stack = vec![b];
             while let Some(b) = stack.pop() {
+                if made.load(Ordering::Relaxed) > MAX_BAKE_TRIANGLES {
+                    break;
+                }
                 if cannot_hold_surface(&field, &mut work.scratch, &b) {
                     continue;
                 }
@@ -299,13 +324,22 @@ pub(crate) fn march<S: Source + ?Sized>(source: &S, grid: Grid, refine_steps: u3
                 if size > LEAF {
                     split(&b, &mut stack);
                 } else {
+                    let before = part.triangles.len();
                     leaf(&field, &b, refine_steps, work, &mut part);
+                    made.fetch_add(part.triangles.len() - before, Ordering::Relaxed);
                 }
             }
             part
         })
         .collect();
-    merge(parts)
+    if made.load(Ordering::Relaxed) > MAX_BAKE_TRIANGLES {
+        return Err(Error::param(
+            "cell",
+            grid.cell,
+            "makes more than 33554432 triangles on this surface; use a larger cell",
+        ));
+    }
+    Ok(merge(parts))
 }
 
 fn cannot_hold_surface<S: Source + ?Sized>(
@@ -690,7 +724,7 @@ mod tests {
                 .collect();
             let lattice = Lattice { n, values };
             let grid = Grid { origin: DVec3::ZERO, cell: 1.0, n };
-            let mesh = march(&lattice, grid, 2);
+            let mesh = march(&lattice, grid, 2).unwrap();
             prop_assert!(check_closed(&mesh).is_ok(), "{:?}", check_closed(&mesh));
             // Positive volume: outward orientation.
             if !mesh.is_empty() {
@@ -736,7 +770,8 @@ mod tests {
                     n: [3, 3, 3],
                 },
                 1,
-            );
+            )
+            .unwrap();
             assert!(
                 check_closed(&mesh).is_ok(),
                 "{config}: {:?}",

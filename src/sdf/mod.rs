@@ -19,7 +19,7 @@ mod tree;
 use rayon::prelude::*;
 
 pub use bsp_route::TessellationOptions;
-pub use marching_cubes::{BakeOptions, MAX_GRID_CELLS};
+pub use marching_cubes::{BakeOptions, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL};
 pub use scene::{FALLBACK_COLOR, MAX_POLYGON_POINTS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene};
 
 use crate::error::Result;
@@ -46,7 +46,7 @@ impl Scene {
         let Some(grid) = marching_cubes::Grid::new(&self.bound.bbox, opts)? else {
             return Ok(Mesh::default());
         };
-        let mut mesh = marching_cubes::march(&self.program, grid, opts.refine_steps);
+        let mut mesh = marching_cubes::march(&self.program, grid, opts.refine_steps)?;
         assign_sources(&self.program, &mut mesh);
         Ok(mesh)
     }
