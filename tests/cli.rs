@@ -1031,3 +1031,76 @@ fn bad_scenes_exit_1_naming_file_and_place() {
     assert!(r.stderr.contains("cell"), "{}", r.stderr);
     assert_eq!(dir.files(), ["empty.json", "radius.json", "syntax.json"]);
 }
+
+/// A library bug the command line found (not the command line's): booleans of closed
+/// 2-manifolds whose result is not one. A box from OBJ ∪ a sphere exported to .glb (float32
+/// positions) has 5 boundary edges, though the same sphere through OBJ (f64) gives a closed
+/// result; `spot.obj − a float32 sphere` has a non-manifold edge and a flat inside-out shell.
+/// Source ids play no part (the library alone, all sources 0, does the same). Remove the
+/// `ignore` once `to_mesh` closes these.
+#[test]
+#[ignore = "library bug: to_mesh leaves boundary edges for a float32-rounded sphere"]
+fn known_bug_union_with_float32_sphere_is_closed() {
+    let dir = Scratch::new("known_bug");
+    let scene = |name: &str, json: &str| {
+        let p = dir.path(name);
+        fs::write(&p, json).unwrap();
+        p
+    };
+    let box_scene = scene(
+        "box.json",
+        r#"{"kind": "sdf_primitive", "data": {"primitive_type": "box", "size": [2, 1, 1.5]}}"#,
+    );
+    let ball_scene = scene(
+        "ball.json",
+        r#"{"kind": "sdf_primitive", "pos": [0.9, 0.3, 0.2],
+            "data": {"primitive_type": "sphere", "radius": 0.8}}"#,
+    );
+    let (cube, ball) = (dir.path("box.obj"), dir.path("ball.glb"));
+    for (s, out) in [(&box_scene, &cube), (&ball_scene, &ball)] {
+        bspcsg([
+            OsStr::new("export"),
+            s.as_os_str(),
+            OsStr::new("-o"),
+            out.as_os_str(),
+        ])
+        .ok();
+        assert_solid(&info(out), "input");
+    }
+    let out = dir.path("union.obj");
+    bspcsg([
+        OsStr::new("union"),
+        cube.as_os_str(),
+        ball.as_os_str(),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ])
+    .ok();
+    assert_solid(&info(&out), "box ∪ float32 sphere");
+
+    if let Some(models) = models() {
+        let cutter = scene(
+            "cutter.json",
+            r#"{"kind": "sdf_primitive", "pos": [0.3, 0.3, 0.5],
+                "data": {"primitive_type": "sphere", "radius": 0.4}}"#,
+        );
+        let glb = dir.path("cutter.glb");
+        bspcsg([
+            OsStr::new("export"),
+            cutter.as_os_str(),
+            OsStr::new("-o"),
+            glb.as_os_str(),
+        ])
+        .ok();
+        let out = dir.path("spot-cut.obj");
+        bspcsg([
+            OsStr::new("difference"),
+            models.join("spot.obj").as_os_str(),
+            glb.as_os_str(),
+            OsStr::new("-o"),
+            out.as_os_str(),
+        ])
+        .ok();
+        assert_solid(&info(&out), "spot − float32 sphere");
+    }
+}
