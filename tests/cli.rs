@@ -724,9 +724,9 @@ fn unwritable_outputs_exit_1_leaving_nothing() {
     fs::create_dir(dir.path("taken.glb")).unwrap();
     fs::write(dir.path("file"), b"").unwrap();
     let mut targets = vec![
-        (dir.path("missing-dir/out.obj"), "does not exist"),
         (dir.path("taken.glb"), "is a directory"),
-        (dir.path("file/out.stl"), "is not a directory"),
+        (dir.path("file/out.stl"), "file is not a directory"),
+        (dir.path("file/deeper/out.obj"), "file is not a directory"),
     ];
     if cfg!(target_os = "linux") {
         // A directory where no file can be created, even by root: the write itself fails.
@@ -749,6 +749,43 @@ fn unwritable_outputs_exit_1_leaving_nothing() {
     }
     assert_eq!(dir.files(), before);
     assert!(dir.path("taken.glb").is_dir());
+}
+
+#[test]
+fn missing_output_directories_are_made_only_on_success() {
+    let dir = Scratch::new("mkdir");
+    let good = write(&dir.path("good.obj"), &Solid::cube(1.0).unwrap().to_mesh());
+    let huge = write(&dir.path("huge.obj"), &Solid::cube(1e50).unwrap().to_mesh());
+    let open = write(&dir.path("open.obj"), &open_cube());
+    let before = dir.files();
+    // Failures before the write (a refused input) and in it (float32 overflow): no directory.
+    bspcsg([
+        OsStr::new("union"),
+        good.as_os_str(),
+        open.as_os_str(),
+        OsStr::new("-o"),
+        dir.path("new/a.glb").as_os_str(),
+    ])
+    .code(2);
+    bspcsg([
+        OsStr::new("convert"),
+        huge.as_os_str(),
+        OsStr::new("-o"),
+        dir.path("new/deeper/huge.stl").as_os_str(),
+    ])
+    .code(2);
+    assert_eq!(dir.files(), before);
+    // Success makes them (the README's set-up command writes into a fresh `out/`).
+    let out = dir.path("new/deeper/cube.gltf");
+    bspcsg([
+        OsStr::new("convert"),
+        good.as_os_str(),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ])
+    .ok();
+    assert_eq!(info(&out)["volume"], 1.0);
+    assert!(dir.path("new/deeper/cube.bin").exists());
 }
 
 #[test]

@@ -166,7 +166,7 @@ struct BooleanArgs {
 #[derive(Args)]
 struct OutputArgs {
     /// The output file; its extension names the format unless --format is given. Written only
-    /// once the work has succeeded, and atomically.
+    /// once the work has succeeded, and atomically; missing directories above it are created.
     #[arg(short, long, value_name = "OUT")]
     output: PathBuf,
 
@@ -415,40 +415,60 @@ fn export(args: &ExportArgs, progress: &Progress) -> Result<(), Failure> {
 }
 
 /// The output path and format, checked before any work so that a typo costs nothing: the
-/// format from `--format` or the extension, and a directory that exists to write into.
+/// format from `--format` or the extension, the output not a directory, and its nearest
+/// existing ancestor a directory (missing ones are created when the output is written).
 fn output_target(args: &OutputArgs) -> Result<(&Path, Format), Failure> {
     let out = args.output.as_path();
     let format = match args.format {
         Some(f) => Format::from(f),
         None => Format::from_path(out)?,
     };
-    if out.is_dir() {
-        return Err(Failure::usage_or_io(format!(
-            "{}: cannot write the output: it is a directory",
-            out.display()
-        )));
-    }
-    let dir = match out.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
+    let refuse = |why: String| {
+        Failure::usage_or_io(format!("{}: cannot write the output: {why}", out.display()))
     };
-    if !dir.is_dir() {
-        return Err(Failure::usage_or_io(format!(
-            "{}: cannot write the output: {} {}",
-            out.display(),
-            dir.display(),
-            if dir.exists() {
-                "is not a directory"
-            } else {
-                "does not exist"
-            }
-        )));
+    if out.is_dir() {
+        return Err(refuse("it is a directory".into()));
+    }
+    let existing = out
+        .ancestors()
+        .skip(1)
+        .find(|d| d.as_os_str().is_empty() || d.exists());
+    if let Some(d) = existing.filter(|d| !d.as_os_str().is_empty() && !d.is_dir()) {
+        return Err(refuse(format!("{} is not a directory", d.display())));
     }
     Ok((out, format))
 }
 
+/// Creates the missing directories above `out`, returning those it made, outermost first.
+fn make_parents(out: &Path) -> Result<Vec<PathBuf>, Failure> {
+    let mut missing: Vec<PathBuf> = out
+        .ancestors()
+        .skip(1)
+        .take_while(|d| !d.as_os_str().is_empty() && !d.exists())
+        .map(Path::to_path_buf)
+        .collect();
+    missing.reverse();
+    for (k, d) in missing.iter().enumerate() {
+        if let Err(e) = std::fs::create_dir(d) {
+            remove_dirs(&missing[..k]);
+            return Err(Failure::usage_or_io(format!(
+                "{}: cannot create the output's directory: {e}",
+                d.display()
+            )));
+        }
+    }
+    Ok(missing)
+}
+
+/// Removes directories made by [`make_parents`], innermost first; only empty ones go.
+fn remove_dirs(dirs: &[PathBuf]) {
+    for d in dirs.iter().rev() {
+        let _ = std::fs::remove_dir(d);
+    }
+}
+
 /// Writes the result and prints a summary, with a warning when the result is empty or not a
-/// closed 2-manifold (possible only from inputs let in by `--allow-open`, or by `convert`).
+/// closed 2-manifold (from inputs let in by `--allow-open` or `convert`, or a library fault).
 fn finish(
     out: &Path,
     format: Format,
@@ -459,7 +479,12 @@ fn finish(
     progress.step("checking the result");
     let report = mesh.report();
     progress.step(format!("writing {}", out.display()));
-    write_mesh_as(out, mesh, materials, format)?;
+    // Directories too appear only once the work has succeeded, and go again if the write fails.
+    let made = make_parents(out)?;
+    if let Err(e) = write_mesh_as(out, mesh, materials, format) {
+        remove_dirs(&made);
+        return Err(e.into());
+    }
     progress.finish();
     if mesh.is_empty() {
         print_stderr(&format!(
