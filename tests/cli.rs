@@ -1141,3 +1141,43 @@ fn known_bug_union_with_float32_sphere_is_closed() {
         assert_solid(&info(&out), "spot − float32 sphere");
     }
 }
+
+/// The same library bug with identical operands (every face coplanar with one of the other's):
+/// `fandisk ∪ fandisk` and `fandisk ∩ fandisk` keep 3 boundary edges and `fandisk − fandisk`
+/// a one-triangle sliver; `Havocglass8_left ∪ itself` (far from the origin) has a boundary
+/// edge, two non-manifold edges and loses 19 of its 2,779,422 units of volume. `spot` and
+/// `rocker-arm` come out right. Remove the `ignore` once these close.
+#[test]
+#[ignore = "library bug: A op A of some real meshes is not a closed 2-manifold"]
+fn known_bug_real_mesh_op_itself_is_exact() {
+    let Some(models) = models() else { return };
+    let dir = Scratch::new("known_bug_self");
+    let out = dir.path("out.obj");
+    for name in [
+        "fandisk.obj",
+        "Havocglass8_left.obj",
+        "spot.obj",
+        "rocker-arm.obj",
+    ] {
+        let a = models.join(name);
+        let volume = num(&info(&a), "volume");
+        for op in ["union", "intersection", "difference"] {
+            bspcsg([
+                OsStr::new(op),
+                a.as_os_str(),
+                a.as_os_str(),
+                OsStr::new("-o"),
+                out.as_os_str(),
+            ])
+            .ok();
+            let text = fs::read_to_string(&out).unwrap();
+            if op == "difference" {
+                assert!(!text.contains("\nf "), "{name} − itself is not empty");
+            } else {
+                let v = info(&out);
+                assert_solid(&v, &format!("{name} {op} itself"));
+                assert!(rel(num(&v, "volume"), volume) < 1e-9, "{name} {op}: {v}");
+            }
+        }
+    }
+}
