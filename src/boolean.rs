@@ -226,6 +226,38 @@ impl Solid {
     }
 }
 
+/// Combines many solids left to right, `s₀ op s₁ op s₂ …`: the n-ary form of [`boolean`], for
+/// callers (such as the command line) that take any number of operands.
+///
+/// Union and intersection are reduced as balanced trees ([`Solid::union_all`],
+/// [`Solid::intersection_all`]). Difference takes the union of all the others away from the
+/// first, `s₀ − (s₁ ∪ s₂ ∪ …)`: the same set as subtracting them one by one, but one difference
+/// against a balanced union instead of a chain that clips the growing result again and again.
+/// Empty input gives the empty solid; a single solid comes back as it is.
+///
+/// ```
+/// use bspcsg::{BoolOp, Solid, boolean_all};
+/// use glam::DVec3;
+///
+/// let cube = |x: f64| Solid::cube(1.0)?.translate(DVec3::new(x, 0.0, 0.0));
+/// let row = boolean_all(BoolOp::Union, [cube(0.0)?, cube(0.5)?, cube(1.0)?]);
+/// assert!((row.volume() - 2.0).abs() < 1e-9);
+/// let cut = boolean_all(BoolOp::Difference, [cube(0.0)?, cube(0.5)?, cube(-0.75)?]);
+/// assert!((cut.volume() - 0.25).abs() < 1e-9);
+/// # Ok::<(), bspcsg::Error>(())
+/// ```
+pub fn boolean_all(op: BoolOp, solids: impl IntoIterator<Item = Solid>) -> Solid {
+    let mut solids = solids.into_iter();
+    match op {
+        BoolOp::Union => Solid::union_all(solids),
+        BoolOp::Intersection => Solid::intersection_all(solids),
+        BoolOp::Difference => match solids.next() {
+            Some(first) => boolean_owned(first, Solid::union_all(solids), BoolOp::Difference),
+            None => Solid::empty(),
+        },
+    }
+}
+
 fn reduce_balanced(mut level: Vec<Solid>, op: BoolOp) -> Solid {
     while level.len() > 1 {
         let mut pairs = Vec::with_capacity(level.len() / 2 + 1);

@@ -63,10 +63,12 @@ mod primitives;
 mod sdf;
 mod solid;
 
-pub use boolean::{BoolOp, boolean};
+pub use boolean::{BoolOp, boolean, boolean_all};
 pub use error::{Error, Result};
 pub use geom::{Aabb, Plane, Side, Tolerance};
-pub use io::{Format, ParseFormatError, read_mesh, read_mesh_as, write_mesh, write_mesh_as};
+pub use io::{
+    Format, ParseFormatError, read_mesh, read_mesh_as, read_solid, write_mesh, write_mesh_as,
+};
 pub use mesh::{FromMeshOptions, Material, Mesh, MeshReport, ShellReport};
 pub use polygon::Polygon;
 pub use primitives::{MAX_POLYGONS, MAX_SEGMENTS, MIN_SEGMENTS, segments_for_tolerance};

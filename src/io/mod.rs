@@ -12,7 +12,8 @@ use std::str::FromStr;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::{Error, Result};
-use crate::mesh::{Material, Mesh};
+use crate::mesh::{FromMeshOptions, Material, Mesh};
+use crate::solid::Solid;
 
 mod gltf;
 mod obj;
@@ -148,6 +149,64 @@ pub fn read_mesh_as(path: &Path, format: Format) -> Result<Mesh> {
         return Err(parse_error(path, None, "the file holds no triangles"));
     }
     Ok(mesh)
+}
+
+/// Reads a mesh file (format by extension, as [`read_mesh`]) and makes a [`Solid`] of it with
+/// [`Solid::from_mesh_with`], every error naming the file.
+///
+/// With [`require_closed`](FromMeshOptions::require_closed) (the default options) the mesh
+/// must bound a solid: a mesh with boundary, non-manifold or inconsistently oriented edges is
+/// refused with its counts (`bunny.obj is not closed: 223 boundary edges`), and so is a closed
+/// mesh turned inside out (a shell enclosing no positive volume that is not a cavity), which
+/// would otherwise stand for its complement in every boolean. [`FromMeshOptions::lenient`]
+/// accepts any mesh the file holds.
+///
+/// ```no_run
+/// use bspcsg::{FromMeshOptions, read_solid};
+/// let part = read_solid("part.obj".as_ref(), &FromMeshOptions::default())?;
+/// let scan = read_solid("scan.stl".as_ref(), &FromMeshOptions::lenient())?;
+/// let both = &part | &scan;
+/// # Ok::<(), bspcsg::Error>(())
+/// ```
+///
+/// # Errors
+///
+/// As [`read_mesh`] for the file itself, and [`Error::InvalidMesh`], whose message starts with
+/// the path, when the mesh does not bound a solid.
+pub fn read_solid(path: &Path, options: &FromMeshOptions) -> Result<Solid> {
+    let mesh = read_mesh(path)?;
+    let invalid = |what: String| Error::InvalidMesh(format!("{} {what}", path.display()));
+    if options.require_closed {
+        let report = mesh.report();
+        let defects: Vec<String> = [
+            (report.boundary_edges, "boundary edges"),
+            (report.non_manifold_edges, "non-manifold edges"),
+            (report.inconsistent_edges, "inconsistently oriented edges"),
+        ]
+        .into_iter()
+        .filter(|&(n, _)| n > 0)
+        .map(|(n, what)| format!("{n} {what}"))
+        .collect();
+        if !defects.is_empty() {
+            return Err(invalid(format!(
+                "is not closed: {} (of {} edges)",
+                defects.join(", "),
+                report.edges
+            )));
+        }
+        if report.inverted_shells > 0 {
+            return Err(invalid(format!(
+                "is inside out: {} of {} shells enclose no positive volume and are not \
+                 cavities (faces must wind counter-clockwise seen from outside)",
+                report.inverted_shells,
+                report.shells.len()
+            )));
+        }
+    }
+    Solid::from_mesh_with(&mesh, options).map_err(|e| match e {
+        Error::InvalidMesh(m) => invalid(format!("is not a valid solid: {m}")),
+        other => other,
+    })
 }
 
 /// Writes a mesh file, choosing the format by the file's extension.
