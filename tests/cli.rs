@@ -1069,15 +1069,12 @@ fn bad_scenes_exit_1_naming_file_and_place() {
     assert_eq!(dir.files(), ["empty.json", "radius.json", "syntax.json"]);
 }
 
-/// A library bug the command line found (not the command line's): booleans of closed
-/// 2-manifolds whose result is not one. A box from OBJ ∪ a sphere exported to .glb (float32
-/// positions) has 5 boundary edges, though the same sphere through OBJ (f64) gives a closed
-/// result; `spot.obj − a float32 sphere` has a non-manifold edge and a flat inside-out shell.
-/// Source ids play no part (the library alone, all sources 0, does the same). Remove the
-/// `ignore` once `to_mesh` closes these.
+/// Regression: booleans with a float32-rounded operand came out open. A box from OBJ ∪ a
+/// sphere exported to .glb had 5 boundary edges (the same sphere through OBJ was closed);
+/// `spot.obj − a float32 sphere` had a non-manifold edge and a flat inside-out shell. Fixed by
+/// the 1e-12 tolerance with anchored planes.
 #[test]
-#[ignore = "library bug: to_mesh leaves boundary edges for a float32-rounded sphere"]
-fn known_bug_union_with_float32_sphere_is_closed() {
+fn union_with_float32_sphere_is_closed() {
     let dir = Scratch::new("known_bug");
     let scene = |name: &str, json: &str| {
         let p = dir.path(name);
@@ -1142,14 +1139,12 @@ fn known_bug_union_with_float32_sphere_is_closed() {
     }
 }
 
-/// The same library bug with identical operands (every face coplanar with one of the other's):
-/// `fandisk ∪ fandisk` and `fandisk ∩ fandisk` keep 3 boundary edges and `fandisk − fandisk`
-/// a one-triangle sliver; `Havocglass8_left ∪ itself` (far from the origin) has a boundary
-/// edge, two non-manifold edges and loses 19 of its 2,779,422 units of volume. `spot` and
-/// `rocker-arm` come out right. Remove the `ignore` once these close.
+/// Regression with identical operands (every face coplanar with one of the other's):
+/// `fandisk ∪ fandisk` and `fandisk ∩ fandisk` kept 3 boundary edges and `fandisk − fandisk`
+/// a one-triangle sliver; `Havocglass8_left ∪ itself` (far from the origin) had a boundary
+/// edge, two non-manifold edges and lost 19 of its 2,779,422 units of volume.
 #[test]
-#[ignore = "library bug: A op A of some real meshes is not a closed 2-manifold"]
-fn known_bug_real_mesh_op_itself_is_exact() {
+fn real_mesh_op_itself_is_exact() {
     let Some(models) = models() else { return };
     let dir = Scratch::new("known_bug_self");
     let out = dir.path("out.obj");

@@ -9,9 +9,6 @@ use crate::mesh::triangulate::{ear_clip_boundary, triangulate_boundary};
 use crate::mesh::weld::FxHashMap;
 use crate::polygon::Polygon;
 
-/// Normals this close (`1 − n·m`) count as one plane (with offsets within `delta`).
-const SAME_NORMAL: f64 = 1e-12;
-
 /// Rings of one source in one plane, connected through shared edges.
 struct Region {
     rings: Vec<u32>,
@@ -26,7 +23,7 @@ pub(super) fn triangulate_regions(
     polygons: &[Polygon],
     delta: f64,
 ) -> (Vec<[u32; 3]>, Vec<u32>) {
-    let mut regions = group(rings, polygons, delta);
+    let mut regions = group(positions, rings, polygons, delta);
     loop {
         let mut boundaries: Vec<Vec<(u32, u32)>> = regions
             .par_iter()
@@ -71,9 +68,10 @@ pub(super) fn triangulate_regions(
     }
 }
 
-/// Unions rings that share an edge used by just the two of them, with the same source and
-/// plane.
-fn group(rings: &[Ring], polygons: &[Polygon], delta: f64) -> Vec<Region> {
+/// Unions rings that share an edge used by just the two of them, with the same source, facing
+/// the same way, each ring's vertices within `delta` of the other's plane: a merged region is
+/// retriangulated in one plane, so nearly flat curved patches must not merge.
+fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) -> Vec<Region> {
     let mut uses: FxHashMap<(u32, u32), SmallVec<[u32; 2]>> =
         FxHashMap::with_capacity_and_hasher(rings.len() * 4, Default::default());
     for (r, ring) in rings.iter().enumerate() {
@@ -98,10 +96,17 @@ fn group(rings: &[Ring], polygons: &[Polygon], delta: f64) -> Vec<Region> {
             if fwd.len() != 1 || back.len() != 1 {
                 continue;
             }
-            let q = &polygons[rings[back[0] as usize].polygon as usize];
+            let other = &rings[back[0] as usize];
+            let q = &polygons[other.polygon as usize];
+            let within = |ring: &Ring, plane: &crate::geom::Plane| {
+                ring.verts
+                    .iter()
+                    .all(|&v| plane.distance(positions[v as usize]).abs() <= delta)
+            };
             if p.source() == q.source()
-                && p.plane().normal.dot(q.plane().normal) >= 1.0 - SAME_NORMAL
-                && (p.plane().offset - q.plane().offset).abs() <= delta
+                && p.plane().normal.dot(q.plane().normal) > 0.0
+                && within(other, p.plane())
+                && within(ring, q.plane())
             {
                 let (x, y) = (find(&mut parent, r as u32), find(&mut parent, back[0]));
                 parent[x.max(y) as usize] = x.min(y);
@@ -130,11 +135,9 @@ fn ring_edges(v: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {
     (0..v.len()).map(move |k| (v[k], v[(k + 1) % v.len()]))
 }
 
-/// The directed edges of a region's rings that no other ring of it uses the other way.
+/// The directed edges of a region's rings that no other ring of it (nor the ring itself, where
+/// a T-junction made a spike `a → b → a`) uses the other way.
 fn boundary(rings: &[Ring], members: &[u32]) -> Vec<(u32, u32)> {
-    if let [only] = members {
-        return ring_edges(&rings[*only as usize].verts).collect();
-    }
     let mut count: FxHashMap<(u32, u32), i32> = FxHashMap::default();
     for &m in members {
         for (a, b) in ring_edges(&rings[m as usize].verts) {

@@ -7,11 +7,14 @@ use smallvec::SmallVec;
 use super::Ring;
 use crate::geom::Aabb;
 use crate::geom::bvh::Bvh;
+use crate::mesh::weld::Wide;
 
-/// Inserts into every ring edge, in order along it, each vertex within `delta` of the edge's
-/// interior (and farther than `delta` from its ends). `O((E + k) log V)` with a BVH over the
-/// vertices.
-pub(super) fn insert_on_edges(positions: &[DVec3], rings: &mut [Ring], delta: f64) {
+/// Inserts into every ring edge, in order along it, each vertex within its reach (`delta`, or
+/// `wide.delta` for the listed crack vertices) of the edge's interior and farther than that
+/// from its ends. `O((E + k) log V)` with a BVH over the vertices.
+pub(super) fn insert_on_edges(positions: &[DVec3], rings: &mut [Ring], delta: f64, wide: &Wide) {
+    let reach: Vec<f64> = positions.iter().map(|&p| wide.reach(p, delta)).collect();
+    let search = wide.widest(delta);
     let boxes: Vec<Aabb> = positions.iter().map(|&p| Aabb::new(p, p)).collect();
     let bvh = Bvh::build(&boxes);
     rings.par_iter_mut().with_min_len(64).for_each(|ring| {
@@ -30,15 +33,15 @@ pub(super) fn insert_on_edges(positions: &[DVec3], rings: &mut [Ring], delta: f6
             let query = Aabb::new(a.min(b), a.max(b));
             on_edge.clear();
             bvh.visit(
-                |bx| bx.overlaps(&query, delta),
+                |bx| bx.overlaps(&query, search),
                 |w| {
                     if w != ia && w != ib {
                         let p = positions[w as usize];
+                        let r = reach[w as usize];
                         let t = (p - a).dot(d) / len2;
-                        let along = t * len2.sqrt();
                         let len = len2.sqrt();
-                        if along > delta && along < len - delta && (a + d * t).distance(p) <= delta
-                        {
+                        let along = t * len;
+                        if along > r && along < len - r && (a + d * t).distance(p) <= r {
                             on_edge.push((t, w));
                         }
                     }
