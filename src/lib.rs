@@ -70,7 +70,7 @@ pub use io::{
     Format, ParseFormatError, read_mesh, read_mesh_as, read_solid, write_mesh, write_mesh_as,
 };
 pub use mesh::{FromMeshOptions, Material, Mesh, MeshReport, ShellReport};
-pub use polygon::Polygon;
+pub use polygon::{Polygon, Split};
 pub use primitives::{MAX_POLYGONS, MAX_SEGMENTS, MIN_SEGMENTS, segments_for_tolerance};
 pub use sdf::{
     BakeOptions, FALLBACK_COLOR, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL,

@@ -18,15 +18,26 @@ pub struct Polygon {
     source: u32,
 }
 
-/// The outcome of classifying a polygon against a plane. It lives only until the caller matches
-/// on it; boxing the pieces would add two allocations to the hottest loop.
+/// Where a polygon lies relative to a plane, and its two pieces where it spans the plane
+/// ([`Polygon::split`]). It lives only until the caller matches on it; boxing the pieces would
+/// add two allocations to the hottest loop.
 #[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug)]
-pub(crate) enum Split {
+pub enum Split {
+    /// Entirely in front (vertices within the tolerance count as on the plane).
     Front,
+    /// Entirely behind.
     Back,
+    /// Every vertex within the tolerance of the plane, or the polygon's own plane.
     Coplanar,
-    Spanning { front: Polygon, back: Polygon },
+    /// Parts on both sides: the piece in front and the piece behind, each keeping the
+    /// polygon's plane and source.
+    Spanning {
+        /// The part in front of the plane.
+        front: Polygon,
+        /// The part behind it.
+        back: Polygon,
+    },
 }
 
 impl Polygon {
@@ -155,7 +166,7 @@ impl Polygon {
     /// Vertices
     /// within `eps` of the plane go to both pieces; an edge from a front to a back vertex is cut
     /// at a point computed the same way, bit for bit, by both polygons that share the edge.
-    pub(crate) fn split(&self, plane: &Plane, eps: f64) -> Split {
+    pub fn split(&self, plane: &Plane, eps: f64) -> Split {
         if self.plane.is_same_or_flipped(plane) {
             return Split::Coplanar;
         }
