@@ -6,9 +6,11 @@ use std::ops::{BitAnd, BitAndAssign, BitOr, BitOrAssign, Sub, SubAssign};
 use rayon::prelude::*;
 
 use crate::bsp::{Coplanar, FOCUS_MARGIN, Label, Surface, Tree};
-use crate::geom::{Aabb, Tolerance};
+use glam::DVec3;
+
+use crate::geom::{Aabb, Plane, Tolerance};
 use crate::mesh::weld::{FxHashMap, key};
-use crate::polygon::Polygon;
+use crate::polygon::{Polygon, Split};
 use crate::solid::Solid;
 
 /// A boolean operation.
@@ -50,7 +52,8 @@ fn boolean_owned(a: Solid, b: Solid, op: BoolOp) -> Solid {
     if a.is_empty() || b.is_empty() || !box_a.overlaps(&box_b, eps) {
         return disjoint(a, b, op);
     }
-    let (a, b) = (a.into_polygons(), b.into_polygons());
+    let a = cut_down(a.into_polygons(), &box_b, eps);
+    let b = cut_down(b.into_polygons(), &box_a, eps);
     let (a_rule, a_keep) = match op {
         BoolOp::Union => (Coplanar::SameFront, Label::Outside),
         BoolOp::Intersection => (Coplanar::SameBack, Label::Inside),
@@ -94,6 +97,54 @@ fn boolean_owned(a: Solid, b: Solid, op: BoolOp) -> Solid {
         polygons.push(p);
     }
     Solid::with_eps(polygons, eps)
+}
+
+/// A polygon whose box is this many times the other operand's is cut down first.
+const HUGE: f64 = 16.0;
+
+/// Cuts every polygon far larger than `other` by the axis-aligned planes of `other` grown by a
+/// quarter of its diagonal, keeping all the pieces.
+///
+/// Cuts along an edge are interpolated between its ends: along an edge 10³⁸ long, a cut near
+/// the origin is off by 10²². An axis-aligned cut of an axis-aligned edge is exact (the cut
+/// coordinate is the plane's, the others the edge's), so a huge face (a box out to 10³⁸ around
+/// a small part) becomes a piece with small, exact corners where the other operand is, and
+/// pieces far away that are classified whole.
+fn cut_down(polys: Vec<Polygon>, other: &Aabb, eps: f64) -> Vec<Polygon> {
+    let reach = HUGE * other.diagonal();
+    if !polys.iter().any(|p| p.bbox().diagonal() > reach) {
+        return polys;
+    }
+    let frame = other.expanded(0.25 * other.diagonal() + eps);
+    let mut planes = Vec::with_capacity(6);
+    for axis in 0..3 {
+        let mut n = DVec3::ZERO;
+        n[axis] = 1.0;
+        planes.push(Plane::through(n * frame.min[axis], n));
+        planes.push(Plane::through(n * frame.max[axis], -n));
+    }
+    let mut out = Vec::with_capacity(polys.len());
+    for p in polys {
+        if p.bbox().diagonal() <= reach || !p.bbox().overlaps(&frame, 0.0) {
+            out.push(p);
+            continue;
+        }
+        // Each plane faces into the frame: the front piece goes on to the next plane.
+        let mut inside = Some(p);
+        for plane in &planes {
+            let Some(piece) = inside.take() else { break };
+            match piece.split(plane, eps) {
+                Split::Spanning { front, back } => {
+                    out.push(back);
+                    inside = Some(front);
+                }
+                Split::Back => out.push(piece),
+                Split::Front | Split::Coplanar => inside = Some(piece),
+            }
+        }
+        out.extend(inside);
+    }
+    out
 }
 
 /// For each polygon, whether its box comes within `margin` of the other operand's surface.
@@ -187,7 +238,12 @@ impl DisjointSets {
 fn disjoint(a: Solid, b: Solid, op: BoolOp) -> Solid {
     match op {
         BoolOp::Union => {
-            let eps = a.carried_eps().max(b.carried_eps());
+            // Two parts of different scales: the finer tolerance serves both.
+            let eps = match (a.is_empty(), b.is_empty()) {
+                (true, _) => b.carried_eps(),
+                (_, true) => a.carried_eps(),
+                _ => a.tolerance().eps().min(b.tolerance().eps()),
+            };
             let mut polygons = a.into_polygons();
             polygons.extend(b.into_polygons());
             Solid::with_eps(polygons, eps)

@@ -77,9 +77,16 @@ impl Solid {
         self.eps
     }
 
-    /// The tolerance this solid's own queries use: its carried one, or one relative to its box.
+    /// The tolerance this solid's own queries (point containment, `to_mesh`) use: the one
+    /// carried from the boolean that made it, which was relative to where its operands met; for
+    /// a solid no boolean made, one relative to its box. Never relative to the box of a boolean's
+    /// result: a huge operand would make it swallow the small one's detail.
     pub fn tolerance(&self) -> Tolerance {
-        Tolerance::for_region(&self.bbox()).max(Tolerance::new(self.eps))
+        if self.eps > 0.0 {
+            Tolerance::new(self.eps)
+        } else {
+            Tolerance::for_region(&self.bbox())
+        }
     }
 
     /// Sets the source id of every polygon (materials ride on it through booleans).

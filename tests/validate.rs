@@ -315,11 +315,17 @@ fn from_mesh_keeps_sources() {
     for (t, s) in m.sources.iter_mut().enumerate() {
         *s = t as u32 / 2;
     }
-    let solid = Solid::from_mesh(&m).unwrap();
+    let solid =
+        Solid::from_mesh_with(&m, &FromMeshOptions::default().with_merge_coplanar(false)).unwrap();
     assert_eq!(solid.polygon_count(), 12);
     let mut sources: Vec<u32> = solid.polygons().iter().map(|p| p.source()).collect();
     sources.sort();
     assert_eq!(sources, [0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5]);
+    // By default each face's two triangles, of one source, merge into one quad.
+    let merged = Solid::from_mesh(&m).unwrap();
+    let mut sources: Vec<u32> = merged.polygons().iter().map(|p| p.source()).collect();
+    sources.sort();
+    assert_eq!(sources, [0, 1, 2, 3, 4, 5]);
 }
 
 fn invalid_message(r: bspcsg::Result<Solid>) -> String {
@@ -340,7 +346,8 @@ fn from_mesh_refuses_open_with_counts() {
         "{msg}"
     );
     // The lenient path goes on.
-    let lenient = Solid::from_mesh_with(&m, &FromMeshOptions::lenient()).unwrap();
+    let lenient = FromMeshOptions::lenient().with_merge_coplanar(false);
+    let lenient = Solid::from_mesh_with(&m, &lenient).unwrap();
     assert_eq!(lenient.polygon_count(), 11);
 }
 
@@ -384,7 +391,8 @@ fn from_mesh_refuses_bad_input() {
     repeated.sources.push(0);
     let msg = invalid_message(Solid::from_mesh(&repeated));
     assert!(msg.contains("faces that repeat a vertex index: 1"), "{msg}");
-    let lenient = Solid::from_mesh_with(&repeated, &FromMeshOptions::lenient()).unwrap();
+    let lenient = FromMeshOptions::lenient().with_merge_coplanar(false);
+    let lenient = Solid::from_mesh_with(&repeated, &lenient).unwrap();
     assert_eq!(lenient.polygon_count(), 12);
 
     let mut sources = cube_mesh();

@@ -2,7 +2,6 @@
 //! that it bounds one.
 
 use super::Mesh;
-use super::MeshReport;
 use super::validate::{check_closed, check_face_indices, check_finite, is_zero_area};
 use super::weld::{FxBuild, FxHashMap};
 use crate::error::{Error, Result};
@@ -22,8 +21,10 @@ pub struct FromMeshOptions {
     /// well-defined inside.
     pub require_closed: bool,
     /// Merge edge-adjacent triangles of the same source that lie in one plane into convex
-    /// polygons (default `false`). Fewer polygons make booleans faster on meshes with flat
-    /// regions, such as CAD exports or this crate's own output read back in.
+    /// polygons (default `true`). Fewer polygons make booleans faster on meshes with flat
+    /// regions, such as CAD exports or this crate's own output read back in; and a face split
+    /// into triangles has a diagonal that later cuts must be computed along, which loses all
+    /// precision where the face is far larger than what cuts it (a 10³⁸ box around a small part).
     ///
     /// Two triangles merge across an edge used by exactly those two, when the new corner lies
     /// within `max(1e-12 × box diagonal, 64 ε × largest |coordinate|)` of the region's plane
@@ -37,7 +38,7 @@ impl Default for FromMeshOptions {
     fn default() -> Self {
         FromMeshOptions {
             require_closed: true,
-            merge_coplanar: false,
+            merge_coplanar: true,
         }
     }
 }
@@ -93,7 +94,7 @@ impl Solid {
     ///   repeats an index, or the mesh is not closed (edges used by one triangle, by more than
     ///   two, or by two in the same direction).
     ///
-    /// Triangles of zero area (by [`MeshReport::ZERO_AREA_RELATIVE`](crate::MeshReport::ZERO_AREA_RELATIVE)) are
+    /// Triangles of zero area (by [`MeshReport::ZERO_AREA_ULPS`](crate::MeshReport::ZERO_AREA_ULPS)) are
     /// skipped: they bound no area, and the plane of a sliver is noise that would mislead
     /// the BSP. Their edges still count when closure is checked, so a crack closed by a sliver
     /// is accepted. The empty mesh gives the empty solid. The input is taken as exact: the
@@ -141,6 +142,10 @@ impl Solid {
         Ok(Solid::from_polygons(polygons))
     }
 }
+
+/// A corner of a merged polygon turns left by more than this sine of its angle: strictly convex
+/// beyond rounding.
+const STRICTLY_CONVEX: f64 = 1e-12;
 
 /// Grows convex polygons from triangles by region growing: a seed triangle's ring takes in,
 /// edge by edge, the triangle across each of its edges while that keeps the ring strictly
@@ -195,7 +200,7 @@ fn merge_coplanar(mesh: &Mesh, triangles: &[Option<Polygon>]) -> Vec<Polygon> {
         // Strictly convex at b: a left turn about the normal, beyond rounding.
         let convex = |a: u32, b: u32, c: u32| {
             let (e, f) = (p(b) - p(a), p(c) - p(b));
-            e.cross(f).dot(plane.normal) > MeshReport::ZERO_AREA_RELATIVE * e.length() * f.length()
+            e.cross(f).dot(plane.normal) > STRICTLY_CONVEX * e.length() * f.length()
         };
         let [a, b, c] = tris[seed];
         for (u, v) in [(a, b), (b, c), (c, a)] {

@@ -32,17 +32,22 @@ pub(crate) fn triangulate_boundary(
     let local: FxHashMap<u32, usize> = ids.iter().enumerate().map(|(k, &i)| (i, k)).collect();
     let pts3: Vec<DVec3> = ids.iter().map(|&i| positions[i as usize]).collect();
     let pts2 = project(&pts3, normal);
-    // Move to the unit square: spade accepts a bounded range of magnitudes.
-    let lo = pts2.iter().copied().fold(DVec2::INFINITY, DVec2::min);
-    let hi = pts2.iter().copied().fold(DVec2::NEG_INFINITY, DVec2::max);
-    let extent = (hi - lo).max_element();
-    if !(extent.is_finite() && extent > 0.0) {
+    // spade accepts magnitudes up to 2^201 and decides orientation exactly on the values it is
+    // given. Scale by a power of two (exact) into its range and do not shift: a shift would
+    // round away detail that is tiny beside the region's extent (a 2-wide hole in a 10^38-wide
+    // face).
+    let reach = pts2
+        .iter()
+        .map(|p| p.abs().max_element())
+        .fold(0.0, f64::max);
+    if !(reach.is_finite() && reach > 0.0) {
         return None;
     }
+    let scale = 2f64.powi(-reach.log2().ceil() as i32);
     let vertices: Vec<Point2<f64>> = pts2
         .iter()
         .map(|p| {
-            let q = (*p - lo) / extent;
+            let q = *p * scale;
             spade::mitigate_underflow(Point2::new(q.x, q.y))
         })
         .collect();

@@ -34,9 +34,12 @@ use crate::geom::Aabb;
 ///   shells, not one.
 /// - A vertex is **non-manifold** when the usable triangles around it form more than one fan,
 ///   fans being joined across edges used by exactly two triangles. Touching solids show up here.
-/// - **Zero area**: twice the triangle's area is at most [`ZERO_AREA_RELATIVE`](Self::ZERO_AREA_RELATIVE)
-///   times its longest edge squared (computed scale-free, so exact zeros always count and tiny
-///   or huge meshes are judged alike). That is a height below 10⁻¹² of the longest edge.
+/// - **Zero area**: the triangle's area cannot be told from zero at the precision of its
+///   coordinates: twice the area is at most [`ZERO_AREA_ULPS`](Self::ZERO_AREA_ULPS) units in
+///   the last place of what moving each corner by its own rounding (ε·|v|) could change it,
+///   `ε · Σ |v| · |opposite edge|`. Scale-free, so tiny and huge meshes are judged alike, exact
+///   zeros always count, and a needle that is merely thin (a 1-wide hole joined to corners
+///   10³⁸ away) does not.
 ///
 /// Self-intersections are not looked for: that needs geometry queries this report avoids.
 #[non_exhaustive]
@@ -116,9 +119,9 @@ pub struct ShellReport {
 }
 
 impl MeshReport {
-    /// A triangle is degenerate when twice its area is at most this fraction of its longest
-    /// edge squared.
-    pub const ZERO_AREA_RELATIVE: f64 = 1e-12;
+    /// A triangle is degenerate when twice its area is at most this many units of rounding:
+    /// `ε · Σ |corner| · |opposite edge|`.
+    pub const ZERO_AREA_ULPS: f64 = 32.0;
 
     /// True when the mesh bounds a valid solid: closed, every edge used by two triangles in
     /// opposite directions, every vertex a single fan, no degenerate triangles, no invalid
@@ -413,28 +416,37 @@ fn has_repeat(tri: &[u32; 3]) -> bool {
     tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]
 }
 
-/// True when twice the triangle's area is at most `ZERO_AREA_RELATIVE` times its longest edge
-/// squared. The edges are first scaled by their largest component, which makes the test
-/// independent of scale and free of overflow and underflow.
+/// True when twice the triangle's area is at most [`MeshReport::ZERO_AREA_ULPS`] units of the
+/// rounding its corners carry. Coordinates are first scaled by a power of two (exact) so that
+/// nothing overflows or underflows.
 pub(crate) fn is_zero_area([a, b, c]: [DVec3; 3]) -> bool {
-    let (e0, e1, e2) = (b - a, c - b, a - c);
-    let s = e0
-        .abs()
-        .max_element()
-        .max(e1.abs().max_element())
-        .max(e2.abs().max_element());
-    if s == 0.0 {
-        return true;
-    }
-    if !s.is_finite() {
+    let reach = a.abs().max(b.abs()).max(c.abs()).max_element();
+    if !reach.is_finite() {
         return false;
     }
-    let (e0, e1, e2) = (e0 / s, e1 / s, e2 / s);
-    let longest2 = e0
-        .length_squared()
-        .max(e1.length_squared())
-        .max(e2.length_squared());
-    e0.cross(e2).length() <= MeshReport::ZERO_AREA_RELATIVE * longest2
+    if reach == 0.0 {
+        return true;
+    }
+    let s = 2f64.powi(-reach.log2().ceil() as i32);
+    let (a, b, c) = (a * s, b * s, c * s);
+    // Cross the two shorter edges, at the corner opposite the longest: differences taken at a
+    // far corner would round the near corners together.
+    let (ab, bc, ca) = (
+        (b - a).length_squared(),
+        (c - b).length_squared(),
+        (a - c).length_squared(),
+    );
+    let twice = if ab >= bc && ab >= ca {
+        (a - c).cross(b - c).length()
+    } else if bc >= ca {
+        (b - a).cross(c - a).length()
+    } else {
+        (c - b).cross(a - b).length()
+    };
+    let rounding = a.length() * (b - c).length()
+        + b.length() * (c - a).length()
+        + c.length() * (a - b).length();
+    twice <= MeshReport::ZERO_AREA_ULPS * f64::EPSILON * rounding
 }
 
 /// Union-find with path halving; iterative, so no input can overflow the stack.
@@ -718,9 +730,16 @@ mod tests {
             assert!(is_zero_area(line.map(|p| p * scale)));
             assert!(!is_zero_area(fat.map(|p| p * scale)), "{scale}");
         }
-        let needle = |h: f64| [DVec3::ZERO, DVec3::X, DVec3::new(0.5, h, 0.0)];
-        assert!(is_zero_area(needle(1e-13)));
-        assert!(!is_zero_area(needle(1e-11)));
+        // A cap whose apex is off the base by about its own rounding is flat; by 10⁻¹³, not.
+        let cap = |h: f64, at: DVec3| [at, at + DVec3::X, at + DVec3::new(0.5, h, 0.0)];
+        assert!(is_zero_area(cap(1e-15, DVec3::ZERO)));
+        assert!(!is_zero_area(cap(1e-13, DVec3::ZERO)));
+        // A million units from the origin, corners carry 10⁻¹⁰ of rounding.
+        assert!(is_zero_area(cap(1e-11, DVec3::splat(1e6))));
+        assert!(!is_zero_area(cap(1e-7, DVec3::splat(1e6))));
+        // Thin is not flat: a 1-wide base joined to a corner 10³⁸ away has area 10³⁸.
+        let far = [DVec3::ZERO, DVec3::X, DVec3::new(3e38, 3e38, 0.0)];
+        assert!(!is_zero_area(far));
         assert!(is_zero_area([DVec3::ONE; 3]));
         assert!(!is_zero_area([DVec3::ZERO, DVec3::X, DVec3::NAN]));
     }

@@ -68,9 +68,11 @@ pub(super) fn triangulate_regions(
     }
 }
 
-/// Unions rings that share an edge used by just the two of them, with the same source, facing
-/// the same way, each ring's vertices within `delta` of the other's plane: a merged region is
-/// retriangulated in one plane, so nearly flat curved patches must not merge.
+/// Groups rings that share an edge used by just the two of them, with the same source, facing
+/// the same way, into regions whose every vertex lies within `delta` of the region's plane (its
+/// first ring's): a region is retriangulated in that plane, so no chain of small steps may
+/// carry it across a gentle fold. Smaller groups join larger ones, each of their vertices
+/// checked once per join, so `O(n log n)` vertex checks in all.
 fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) -> Vec<Region> {
     let mut uses: FxHashMap<(u32, u32), SmallVec<[u32; 2]>> =
         FxHashMap::with_capacity_and_hasher(rings.len() * 4, Default::default());
@@ -79,16 +81,12 @@ fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) 
             uses.entry((a, b)).or_default().push(r as u32);
         }
     }
-    let mut parent: Vec<u32> = (0..rings.len() as u32).collect();
-    let find = |parent: &mut Vec<u32>, mut x: u32| {
-        while parent[x as usize] != x {
-            parent[x as usize] = parent[parent[x as usize] as usize];
-            x = parent[x as usize];
-        }
-        x
-    };
+    let plane_of = |r: u32| polygons[rings[r as usize].polygon as usize].plane();
+    let source_of = |r: u32| polygons[rings[r as usize].polygon as usize].source();
+    // group[r]: the group ring r belongs to; members[g]: its rings, the first giving the plane.
+    let mut group: Vec<u32> = (0..rings.len() as u32).collect();
+    let mut members: Vec<Vec<u32>> = (0..rings.len() as u32).map(|r| vec![r]).collect();
     for (r, ring) in rings.iter().enumerate() {
-        let p = &polygons[ring.polygon as usize];
         for (a, b) in ring_edges(&ring.verts) {
             let (Some(fwd), Some(back)) = (uses.get(&(a, b)), uses.get(&(b, a))) else {
                 continue;
@@ -96,39 +94,45 @@ fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) 
             if fwd.len() != 1 || back.len() != 1 {
                 continue;
             }
-            let other = &rings[back[0] as usize];
-            let q = &polygons[other.polygon as usize];
-            let within = |ring: &Ring, plane: &crate::geom::Plane| {
-                ring.verts
-                    .iter()
-                    .all(|&v| plane.distance(positions[v as usize]).abs() <= delta)
+            let (gx, gy) = (group[r], group[back[0] as usize]);
+            if gx == gy {
+                continue;
+            }
+            let (big, small) = if members[gx as usize].len() >= members[gy as usize].len() {
+                (gx, gy)
+            } else {
+                (gy, gx)
             };
-            if p.source() == q.source()
-                && p.plane().normal.dot(q.plane().normal) > 0.0
-                && within(other, p.plane())
-                && within(ring, q.plane())
-            {
-                let (x, y) = (find(&mut parent, r as u32), find(&mut parent, back[0]));
-                parent[x.max(y) as usize] = x.min(y);
+            let plane = plane_of(members[big as usize][0]);
+            let joins = members[small as usize].iter().all(|&m| {
+                source_of(m) == source_of(members[big as usize][0])
+                    && plane_of(m).normal.dot(plane.normal) > 0.0
+                    && rings[m as usize]
+                        .verts
+                        .iter()
+                        .all(|&v| plane.distance(positions[v as usize]).abs() <= delta)
+            });
+            if joins {
+                let moved = std::mem::take(&mut members[small as usize]);
+                for &m in &moved {
+                    group[m as usize] = big;
+                }
+                members[big as usize].extend(moved);
             }
         }
     }
-    let mut index: FxHashMap<u32, usize> = FxHashMap::default();
-    let mut regions: Vec<Region> = Vec::new();
-    for r in 0..rings.len() as u32 {
-        let root = find(&mut parent, r);
-        let k = *index.entry(root).or_insert_with(|| {
-            let p = &polygons[rings[root as usize].polygon as usize];
-            regions.push(Region {
-                rings: Vec::new(),
-                source: p.source(),
-                normal: p.plane().normal,
-            });
-            regions.len() - 1
-        });
-        regions[k].rings.push(r);
-    }
-    regions
+    members
+        .into_iter()
+        .filter(|m| !m.is_empty())
+        .map(|rings_of| {
+            let first = polygons[rings[rings_of[0] as usize].polygon as usize].plane();
+            Region {
+                source: polygons[rings[rings_of[0] as usize].polygon as usize].source(),
+                normal: first.normal,
+                rings: rings_of,
+            }
+        })
+        .collect()
 }
 
 fn ring_edges(v: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {
@@ -266,5 +270,6 @@ fn between(positions: &[DVec3], a: u32, v: u32, b: u32, delta: f64) -> bool {
         return false;
     }
     let t = (v - a).dot(d) / len2;
-    t > 0.0 && t < 1.0 && (a + d * t).distance(v) <= delta
+    // The cross product: `a + d·t` would carry the rounding of a long edge's length.
+    t > 0.0 && t < 1.0 && (v - a).cross(d).length() <= delta * len2.sqrt()
 }

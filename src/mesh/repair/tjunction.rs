@@ -38,17 +38,26 @@ pub(super) fn insert_on_edges(positions: &[DVec3], rings: &mut [Ring], delta: f6
                     if w != ia && w != ib {
                         let p = positions[w as usize];
                         let r = reach[w as usize];
-                        let t = (p - a).dot(d) / len2;
+                        // Distance to the line by the cross product: `a + d·t` would carry
+                        // the rounding of the edge's length (10²² on a 10³⁸-long edge).
                         let len = len2.sqrt();
-                        let along = t * len;
-                        if along > r && along < len - r && (a + d * t).distance(p) <= r {
-                            on_edge.push((t, w));
+                        let along = (p - a).dot(d) / len;
+                        let off = (p - a).cross(d).length() / len;
+                        if along > r && along < len - r && off <= r {
+                            on_edge.push((along, w));
                         }
                     }
                     false
                 },
             );
-            on_edge.sort_by(|x, y| x.0.total_cmp(&y.0));
+            // Order by comparing the points themselves: their distances from `a` can round to
+            // the same value on a long edge (1 and −1 are both 10³⁸ from an end at 10³⁸).
+            on_edge.sort_by(|x, y| {
+                (positions[x.1 as usize] - positions[y.1 as usize])
+                    .dot(d)
+                    .total_cmp(&0.0)
+                    .then(x.0.total_cmp(&y.0))
+            });
             out.extend(on_edge.iter().map(|&(_, w)| w));
         }
         ring.verts = out;
