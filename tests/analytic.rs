@@ -1,7 +1,10 @@
 //! Analytic cases with known volumes and areas.
 
+mod common;
+
 use approx::assert_relative_eq;
 use bspcsg::{Containment, Solid};
+use common::{assert_clean_mesh, shells_and_genus};
 use glam::DVec3;
 
 fn cube(size: f64) -> Solid {
@@ -19,6 +22,9 @@ fn adjacent_cubes_union() {
     let u = &a | &b;
     assert_relative_eq!(u.volume(), 2.0, max_relative = 1e-12);
     assert_relative_eq!(u.area(), 10.0, max_relative = 1e-12);
+    // The shared face vanishes and the coplanar halves merge: a 2 × 1 × 1 box, 12 triangles.
+    let mesh = assert_clean_mesh(&u, "adjacent cubes");
+    assert_eq!(mesh.triangle_count(), 12);
 }
 
 #[test]
@@ -31,6 +37,13 @@ fn half_overlapping_cubes() {
     assert_relative_eq!((&a | &b).area(), 8.0, max_relative = 1e-12);
     assert_relative_eq!((&a - &b).area(), 4.0, max_relative = 1e-12);
     assert_relative_eq!((&a & &b).area(), 4.0, max_relative = 1e-12);
+    for (name, r) in [("∪", &a | &b), ("∩", &a & &b), ("−", &a - &b)] {
+        assert_eq!(
+            assert_clean_mesh(&r, name).triangle_count(),
+            12,
+            "{name}: a box"
+        );
+    }
 }
 
 #[test]
@@ -41,6 +54,44 @@ fn cube_minus_corner_cube() {
     let d = &a - &b;
     assert_relative_eq!(d.volume(), 7.0, max_relative = 1e-12);
     assert_relative_eq!(d.area(), 24.0, max_relative = 1e-12);
+    assert_eq!(
+        shells_and_genus(&assert_clean_mesh(&d, "notched cube"), "notched cube"),
+        (1, 0)
+    );
+}
+
+#[test]
+fn coaxial_cubes_come_back_as_a_handful_of_triangles() {
+    // A larger cube swallowing most of a smaller one on the same axis: the union is an L of two
+    // boxes, whose coplanar fragments merge back into a few polygons.
+    let small = moved(&cube(1.0), 0.0, 0.0, 0.8);
+    let big = cube(2.0);
+    let u = &big | &small;
+    assert_relative_eq!(u.volume(), 8.0 + 0.3, max_relative = 1e-12);
+    let mesh = assert_clean_mesh(&u, "coaxial cubes");
+    assert!(
+        mesh.triangle_count() <= 30,
+        "{} triangles",
+        mesh.triangle_count()
+    );
+    let inside = &big | &cube(1.0);
+    assert_eq!(
+        assert_clean_mesh(&inside, "nested cubes").triangle_count(),
+        12
+    );
+}
+
+#[test]
+fn solids_touching_along_an_edge_or_at_a_vertex_are_separate_manifold_shells() {
+    let a = cube(1.0);
+    let along_edge = &a | &moved(&a, 1.0, 1.0, 0.0);
+    let at_vertex = &a | &moved(&a, 1.0, 1.0, 1.0);
+    for (name, u) in [("edge", along_edge), ("vertex", at_vertex)] {
+        assert_relative_eq!(u.volume(), 2.0, max_relative = 1e-12);
+        let mesh = assert_clean_mesh(&u, name);
+        assert_eq!(shells_and_genus(&mesh, name), (2, 0), "{name}");
+        assert_eq!(mesh.triangle_count(), 24, "{name}");
+    }
 }
 
 #[test]
@@ -52,6 +103,8 @@ fn self_operations() {
     ] {
         let v = a.volume();
         assert!((&a - &a).is_empty(), "A - A must be empty");
+        assert_clean_mesh(&(&a | &a), "A ∪ A");
+        assert_clean_mesh(&(&a & &a), "A ∩ A");
         assert_relative_eq!((&a | &a).volume(), v, max_relative = 1e-12);
         assert_relative_eq!((&a & &a).volume(), v, max_relative = 1e-12);
         assert_relative_eq!((&a | &a).area(), a.area(), max_relative = 1e-12);
@@ -65,6 +118,10 @@ fn disjoint_unions_add() {
     let b = moved(&cube(1.0), 5.0, 0.0, 0.0);
     let u = &a | &b;
     assert_relative_eq!(u.volume(), a.volume() + 1.0, max_relative = 1e-12);
+    assert_eq!(
+        shells_and_genus(&assert_clean_mesh(&u, "disjoint"), "disjoint").0,
+        2
+    );
     assert!((&a & &b).is_empty());
     assert_relative_eq!((&a - &b).volume(), a.volume(), max_relative = 1e-12);
 }

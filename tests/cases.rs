@@ -2,9 +2,11 @@
 
 #[path = "../benches/common/cases.rs"]
 mod cases;
+mod common;
 
 use approx::assert_relative_eq;
 use bspcsg::Solid;
+use common::{assert_clean_mesh, shells_and_genus};
 
 #[test]
 fn menger_sponge_volumes() {
@@ -15,6 +17,11 @@ fn menger_sponge_volumes() {
             (20.0f64 / 27.0).powi(depth as i32),
             max_relative = 1e-12
         );
+        // One shell, of the Menger sponge's known genus: 5, 81 and 1409 at depths 1 to 3.
+        let mesh = assert_clean_mesh(&sponge, "sponge");
+        let (shells, genus) = shells_and_genus(&mesh, "sponge");
+        assert_eq!(shells, 1);
+        assert_eq!(genus, [5, 81, 1409][depth as usize - 1], "depth {depth}");
     }
 }
 

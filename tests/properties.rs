@@ -50,9 +50,12 @@ proptest! {
     fn inclusion_exclusion(a in placed(), b in placed()) {
         let (va, vb) = (a.volume(), b.volume());
         let scale = va.max(vb);
-        let union = (&a | &b).volume();
-        let inter = (&a & &b).volume();
-        let diff = (&a - &b).volume();
+        let (u, i, d) = (&a | &b, &a & &b, &a - &b);
+        for (name, solid) in [("union", &u), ("intersection", &i), ("difference", &d)] {
+            let report = solid.to_mesh().report();
+            prop_assert!(report.is_closed_manifold(), "{name}: {report}");
+        }
+        let (union, inter, diff) = (u.volume(), i.volume(), d.volume());
         prop_assert!(close(union + inter, va + vb, scale),
             "V(A∪B) + V(A∩B) = {} but V(A) + V(B) = {}", union + inter, va + vb);
         prop_assert!(close(diff, va - inter, scale),
@@ -74,6 +77,10 @@ proptest! {
     #[test]
     fn self_operations_are_identities(a in placed()) {
         let v = a.volume();
+        for solid in [&a | &a, &a & &a] {
+            let report = solid.to_mesh().report();
+            prop_assert!(report.is_closed_manifold(), "{report}");
+        }
         prop_assert!((&a - &a).volume().abs() <= 1e-9 * v);
         prop_assert!(close((&a | &a).volume(), v, v));
         prop_assert!(close((&a & &a).volume(), v, v));

@@ -3,7 +3,7 @@
 mod common;
 
 use bspcsg::{BakeOptions, Scene};
-use common::{Topology, vertices_are_manifold};
+use common::{assert_closed_manifold, shells_and_genus};
 
 fn scene(json: &str) -> Scene {
     Scene::from_json_str(json).unwrap()
@@ -14,11 +14,7 @@ fn sphere_at_cell_005_is_watertight_genus_0_and_within_0_3_percent() {
     let s =
         scene(r#"{"kind": "sdf_primitive", "data": {"primitive_type": "sphere", "radius": 1}}"#);
     let mesh = s.bake(&BakeOptions::with_cell(0.05)).unwrap();
-    let t = Topology::of(&mesh);
-    t.assert_closed_manifold("sphere");
-    assert!(vertices_are_manifold(&mesh));
-    assert_eq!(t.components, 1);
-    assert_eq!(t.genus(), 0);
+    assert_eq!(shells_and_genus(&mesh, "sphere"), (1, 0));
     let exact = 4.0 / 3.0 * std::f64::consts::PI;
     let rel = (mesh.volume() - exact).abs() / exact;
     println!(
@@ -35,10 +31,7 @@ fn torus_at_cell_005_is_genus_1_within_1_percent() {
         r#"{"kind": "sdf_primitive", "data": {"primitive_type": "torus", "radius": 1, "tube_radius": 0.25}}"#,
     );
     let mesh = s.bake(&BakeOptions::with_cell(0.05)).unwrap();
-    let t = Topology::of(&mesh);
-    t.assert_closed_manifold("torus");
-    assert!(vertices_are_manifold(&mesh));
-    assert_eq!((t.components, t.genus()), (1, 1));
+    assert_eq!(shells_and_genus(&mesh, "torus"), (1, 1));
     let exact = 2.0 * std::f64::consts::PI.powi(2) * 1.0 * 0.25f64.powi(2);
     let rel = (mesh.volume() - exact).abs() / exact;
     println!(
@@ -68,11 +61,9 @@ fn spheres_tangent_at_a_grid_vertex_stay_manifold() {
         ..Default::default()
     };
     let mesh = s.bake(&opts).unwrap();
-    let t = Topology::of(&mesh);
-    t.assert_closed_manifold("tangent spheres");
-    assert!(vertices_are_manifold(&mesh));
+    let (shells, genus) = shells_and_genus(&mesh, "tangent spheres");
     // Zero counts as outside, so the spheres stay apart: two spheres, genus 0.
-    assert_eq!((t.components, t.genus()), (2, 0));
+    assert_eq!((shells, genus), (2, 0));
     // No two vertices share a position either.
     let mut seen = std::collections::HashSet::new();
     assert!(
@@ -94,7 +85,7 @@ fn surfaces_touching_or_crossing_the_bounds_are_closed() {
         ..Default::default()
     };
     let mesh = b.bake(&opts).unwrap();
-    Topology::of(&mesh).assert_closed_manifold("box on the bounds");
+    assert_closed_manifold(&mesh, "box on the bounds");
     // Marching cubes chamfers each sharp edge by at most half a cell square per length.
     let chamfer = 12.0 * 2.0 * 0.1 * 0.1 / 2.0;
     let v = mesh.volume();
@@ -103,9 +94,7 @@ fn surfaces_touching_or_crossing_the_bounds_are_closed() {
     let s =
         scene(r#"{"kind": "sdf_primitive", "data": {"primitive_type": "sphere", "radius": 1.2}}"#);
     let mesh = s.bake(&opts).unwrap();
-    let t = Topology::of(&mesh);
-    t.assert_closed_manifold("sphere cut by the bounds");
-    assert_eq!(t.genus(), 0);
+    assert_eq!(shells_and_genus(&mesh, "sphere cut by the bounds").1, 0);
     // The ball of radius 1.2 less six caps of height 0.2 beyond the cube [-1, 1]³.
     let pi = std::f64::consts::PI;
     let exact = 4.0 / 3.0 * pi * 1.2f64.powi(3) - 6.0 * pi * 0.04 * (3.0 * 1.2 - 0.2) / 3.0;
@@ -135,7 +124,7 @@ fn empty_and_unbounded_scenes() {
         ..Default::default()
     };
     let mesh = half.bake(&bounded).unwrap();
-    Topology::of(&mesh).assert_closed_manifold("half-space in bounds");
+    assert_closed_manifold(&mesh, "half-space in bounds");
     // The half cube, less the chamfers of its 20 units of sharp edges (cell 1/8).
     let v = mesh.volume();
     assert!(
@@ -170,9 +159,8 @@ mod random {
             };
             let s = Scene::from_json_str(&format!(r#"{{{op}, "children": [{}]}}"#, children.join(","))).unwrap();
             let mesh = s.bake(&BakeOptions::with_cell(cell)).unwrap();
-            let t = Topology::of(&mesh);
-            prop_assert!(t.is_closed_manifold(), "{t:?}");
-            prop_assert!(vertices_are_manifold(&mesh));
+            let report = mesh.report();
+            prop_assert!(report.is_closed_manifold(), "{report}");
             // Spheres smaller than a cell may fall between grid points: then nothing is baked.
             prop_assert!(mesh.is_empty() || mesh.volume() > 0.0);
         }
@@ -189,6 +177,6 @@ fn a_huge_sparse_grid_is_cheap() {
         ]}"#,
     );
     let mesh = s.bake(&BakeOptions::with_cell(0.05)).unwrap();
-    Topology::of(&mesh).assert_closed_manifold("sparse");
+    assert_closed_manifold(&mesh, "sparse");
     assert!(s.bake(&BakeOptions::with_cell(0.001)).is_err());
 }

@@ -5,7 +5,7 @@
 mod common;
 
 use bspcsg::{BakeOptions, Containment, Scene, TessellationOptions};
-use common::{Topology, vertices_are_manifold};
+use common::{assert_closed_manifold, shells_and_genus};
 use glam::DVec3;
 
 const TOLERANCE: f64 = 0.01;
@@ -16,9 +16,7 @@ fn check(name: &str) {
     let scene = Scene::from_path(&path).unwrap();
 
     let mesh = scene.bake(&BakeOptions::with_cell(CELL)).unwrap();
-    let t = Topology::of(&mesh);
-    t.assert_closed_manifold(name);
-    assert!(vertices_are_manifold(&mesh), "{name}");
+    assert_closed_manifold(&mesh, name);
     assert!(
         mesh.sources
             .iter()

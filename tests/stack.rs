@@ -12,6 +12,7 @@ fn big_union_on_a_small_stack() {
             let b = a.clone().translate(DVec3::new(0.5, 0.0, 0.0)).unwrap();
             let u = &a | &b;
             let mesh = u.to_mesh();
+            assert!(mesh.report().is_closed_manifold());
             (u.volume(), mesh.triangle_count())
         })
         .unwrap();
