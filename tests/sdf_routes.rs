@@ -5,7 +5,7 @@
 mod common;
 
 use bspcsg::{BakeOptions, Containment, Scene, TessellationOptions};
-use common::{assert_closed_manifold, shells_and_genus};
+use common::assert_closed_manifold;
 use glam::DVec3;
 
 const TOLERANCE: f64 = 0.01;
