@@ -26,6 +26,12 @@ pub(crate) fn triangulate_boundary(
             None
         };
     }
+    // Most regions are one small polygon: ear clipping beats building a triangulation.
+    if edges.len() <= SMALL_LOOP
+        && let Some(tris) = ear_clip_loop(positions, normal, edges)
+    {
+        return Some(tris);
+    }
     let mut ids: Vec<u32> = edges.iter().flat_map(|&(a, b)| [a, b]).collect();
     ids.sort_unstable();
     ids.dedup();
@@ -106,6 +112,9 @@ pub(crate) fn triangulate_boundary(
     Some(triangles)
 }
 
+/// Regions whose boundary is one loop of at most this many edges are ear-clipped.
+const SMALL_LOOP: usize = 8;
+
 /// The last resort for a region spade could not take: its boundary chained into one loop and
 /// ear-clipped. Nothing for boundaries that are not one simple loop.
 pub(crate) fn ear_clip_boundary(
@@ -113,27 +122,42 @@ pub(crate) fn ear_clip_boundary(
     normal: DVec3,
     edges: &[(u32, u32)],
 ) -> Vec<[u32; 3]> {
+    ear_clip_loop(positions, normal, edges).unwrap_or_default()
+}
+
+/// The boundary chained into one loop and ear-clipped, fattest ear first, never taking an ear
+/// whose area is within rounding of zero; `None` when the edges are not one simple loop or no
+/// such ear remains.
+fn ear_clip_loop(
+    positions: &[DVec3],
+    normal: DVec3,
+    edges: &[(u32, u32)],
+) -> Option<Vec<[u32; 3]>> {
     let next: FxHashMap<u32, u32> = edges.iter().copied().collect();
     if next.len() != edges.len() || edges.is_empty() {
-        return Vec::new();
+        return None;
     }
     let mut ring = vec![edges[0].0];
     while ring.len() <= edges.len() {
-        let Some(&n) = next.get(ring.last().expect("ring starts non-empty")) else {
-            return Vec::new();
-        };
+        let &n = next.get(ring.last().expect("ring starts non-empty"))?;
         if n == ring[0] {
             break;
         }
         ring.push(n);
     }
     if ring.len() != edges.len() {
-        return Vec::new();
+        return None;
     }
     let pts: Vec<DVec3> = ring.iter().map(|&i| positions[i as usize]).collect();
-    ear_clip(&project(&pts, normal))
-        .map(|tris| tris.into_iter().map(|t| t.map(|k| ring[k])).collect())
-        .unwrap_or_default()
+    let tris = ear_clip(&project(&pts, normal))?;
+    // Ear clipping decides on the projection; refuse any triangle flat in 3D.
+    if tris
+        .iter()
+        .any(|t| crate::mesh::validate::is_zero_area(t.map(|k| pts[k])))
+    {
+        return None;
+    }
+    Some(tris.into_iter().map(|t| t.map(|k| ring[k])).collect())
 }
 
 /// Projects points of a plane with `normal` to 2D, dropping the normal's dominant axis and

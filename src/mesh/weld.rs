@@ -30,6 +30,7 @@ impl std::hash::Hasher for FxHasher {
 
 pub(crate) type FxBuild = BuildHasherDefault<FxHasher>;
 pub(crate) type FxHashMap<K, V> = HashMap<K, V, FxBuild>;
+pub(crate) type FxHashSet<K> = std::collections::HashSet<K, FxBuild>;
 
 /// The key of a position: its bits, with −0 folded onto +0.
 #[inline]
@@ -176,8 +177,10 @@ pub(crate) fn weld_within(points: &[DVec3], delta: f64, wide: &Wide) -> (Vec<DVe
     if delta <= 0.0 {
         return (exact.positions, first);
     }
-    let cell_size = wide.widest(delta);
-    // A representative within reach lies in one of the 27 cells around.
+    // Cells much larger than any reach: a representative within reach of a point lies in the
+    // point's own cell, or in a neighbour only where the point is within reach of that side.
+    let widest = wide.widest(delta);
+    let cell_size = 64.0 * widest;
     let cell = |p: DVec3| -> [i64; 3] {
         // `as` saturates, so coordinates beyond the i64 range share the outermost cells.
         let c = (p / cell_size).floor();
@@ -191,10 +194,23 @@ pub(crate) fn weld_within(points: &[DVec3], delta: f64, wide: &Wide) -> (Vec<DVe
     for &p in &exact.positions {
         let reach = wide.reach(p, delta);
         let c = cell(p);
+        // Per axis, the neighbour offsets worth looking at.
+        let offsets = |k: usize| -> SmallVec<[i64; 3]> {
+            let lo = c[k] as f64 * cell_size;
+            let mut o: SmallVec<[i64; 3]> = smallvec::smallvec![0];
+            if p[k] - lo <= widest {
+                o.push(-1);
+            }
+            if lo + cell_size - p[k] <= widest {
+                o.push(1);
+            }
+            o
+        };
+        let (ox, oy, oz) = (offsets(0), offsets(1), offsets(2));
         let mut found = None;
-        'search: for dx in -1..=1i64 {
-            for dy in -1..=1i64 {
-                for dz in -1..=1i64 {
+        'search: for &dx in &ox {
+            for &dy in &oy {
+                for &dz in &oz {
                     let k = [
                         c[0].saturating_add(dx),
                         c[1].saturating_add(dy),

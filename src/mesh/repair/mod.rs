@@ -49,26 +49,34 @@ pub(crate) struct Ring {
     pub polygon: u32,
 }
 
-/// The repaired mesh of a closed polygon soup whose booleans used plane tolerance `eps`. Where
-/// a pass leaves cracks (edges used by one triangle), the next lets just the vertices on those
-/// cracks weld and join edges ten times farther, keeping the pass with the fewest cracks.
+/// The repaired mesh of a closed polygon soup whose booleans used plane tolerance `eps`.
+///
+/// The first pass searches for T-junctions only on edges not already matched; if it leaves
+/// cracks (edges used by one triangle), a pass searches every edge. Where cracks remain, each
+/// further pass lets the points near them weld and join edges ten times farther, and the pass
+/// with the fewest cracks is kept.
 pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64) -> Mesh {
     if polygons.is_empty() {
         return Mesh::default();
     }
     let delta = WELD_TOLERANCES * eps;
     let mut wide = Wide::default();
-    let mut reach = delta;
-    let mut best = repair(polygons, delta, &wide);
+    // First the quick pass, then the full T-junction search at the same weld, then wider welds.
+    let mut best = repair(polygons, delta, &wide, true);
     let mut cracks = crack_vertices(&best);
+    if !cracks.is_empty() {
+        best = repair(polygons, delta, &wide, false);
+        cracks = crack_vertices(&best);
+    }
     let mut fewest = cracks.len();
+    let mut reach = delta;
     for _ in 0..WELD_RETRIES {
         if cracks.is_empty() {
             break;
         }
         reach *= 10.0;
         wide.widen(&cracks, reach);
-        let mesh = repair(polygons, delta, &wide);
+        let mesh = repair(polygons, delta, &wide, false);
         cracks = crack_vertices(&mesh);
         if cracks.len() < fewest {
             (best, fewest) = (mesh, cracks.len());
@@ -98,8 +106,9 @@ fn crack_vertices(mesh: &Mesh) -> Vec<DVec3> {
     out
 }
 
-/// One repair pass with weld tolerance `delta` (wider for the `wide` points).
-fn repair(polygons: &[Polygon], delta: f64, wide: &Wide) -> Mesh {
+/// One repair pass with weld tolerance `delta` (wider near the `wide` points); `quick` skips the
+/// T-junction search on edges already matched (see [`tjunction::insert_on_edges`]).
+fn repair(polygons: &[Polygon], delta: f64, wide: &Wide, quick: bool) -> Mesh {
     let corners: Vec<DVec3> = polygons
         .iter()
         .flat_map(|p| p.vertices().iter().copied())
@@ -122,7 +131,7 @@ fn repair(polygons: &[Polygon], delta: f64, wide: &Wide) -> Mesh {
             });
         }
     }
-    tjunction::insert_on_edges(&positions, &mut rings, delta, wide);
+    tjunction::insert_on_edges(&positions, &mut rings, delta, wide, quick);
     let triangles = regions::triangulate_regions(&positions, &rings, polygons, delta);
     shells::split_into_shells(positions, triangles)
 }

@@ -18,17 +18,20 @@ pub(super) fn split_into_shells(
     let n = triangles.len() * 3;
     let from = |h: usize| triangles[h / 3][h % 3];
     let to = |h: usize| triangles[h / 3][(h % 3 + 1) % 3];
-    let mut order: Vec<u32> = (0..n as u32).collect();
-    let key = |h: usize| {
-        let (a, b) = (from(h), to(h));
-        (a.min(b), a.max(b))
-    };
-    order.sort_unstable_by_key(|&h| key(h as usize));
+    // Half-edges sorted by their undirected edge, as (min << 32 | max, half-edge).
+    let mut keyed: Vec<(u64, u32)> = (0..n)
+        .map(|h| {
+            let (a, b) = (from(h), to(h));
+            (((a.min(b) as u64) << 32) | a.max(b) as u64, h as u32)
+        })
+        .collect();
+    keyed.sort_unstable();
+    let order: Vec<u32> = keyed.iter().map(|&(_, h)| h).collect();
     let mut twin: Vec<u32> = vec![u32::MAX; n];
     let mut i = 0;
     while i < n {
         let mut j = i + 1;
-        while j < n && key(order[j] as usize) == key(order[i] as usize) {
+        while j < n && keyed[j].0 == keyed[i].0 {
             j += 1;
         }
         let group = &order[i..j];

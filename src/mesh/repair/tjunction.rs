@@ -7,12 +7,29 @@ use smallvec::SmallVec;
 use super::Ring;
 use crate::geom::Aabb;
 use crate::geom::bvh::Bvh;
-use crate::mesh::weld::Wide;
+use crate::mesh::weld::{FxHashSet, Wide};
 
 /// Inserts into every ring edge, in order along it, each vertex within its reach (`delta`, or
 /// `wide.delta` for the listed crack vertices) of the edge's interior and farther than that
 /// from its ends. `O((E + k) log V)` with a BVH over the vertices.
-pub(super) fn insert_on_edges(positions: &[DVec3], rings: &mut [Ring], delta: f64, wide: &Wide) {
+///
+/// With `skip_matched`, an edge whose reverse some other ring already has is taken as matched
+/// and left alone: usually only the polygons on its two sides meet along it, and that is most
+/// edges, so most queries are skipped. Where a sliver's vertex lies on such an edge after all,
+/// the pass leaves a crack, and the caller retries checking every edge.
+pub(super) fn insert_on_edges(
+    positions: &[DVec3],
+    rings: &mut [Ring],
+    delta: f64,
+    wide: &Wide,
+    skip_matched: bool,
+) {
+    let mut directed: FxHashSet<(u32, u32)> =
+        FxHashSet::with_capacity_and_hasher(rings.len() * 4, Default::default());
+    for ring in rings.iter() {
+        let n = ring.verts.len();
+        directed.extend((0..n).map(|k| (ring.verts[k], ring.verts[(k + 1) % n])));
+    }
     let reach: Vec<f64> = positions.iter().map(|&p| wide.reach(p, delta)).collect();
     let search = wide.widest(delta);
     let boxes: Vec<Aabb> = positions.iter().map(|&p| Aabb::new(p, p)).collect();
@@ -25,6 +42,9 @@ pub(super) fn insert_on_edges(positions: &[DVec3], rings: &mut [Ring], delta: f6
             let (ia, ib) = (ring.verts[k], ring.verts[(k + 1) % n]);
             let (a, b) = (positions[ia as usize], positions[ib as usize]);
             out.push(ia);
+            if skip_matched && directed.contains(&(ib, ia)) {
+                continue;
+            }
             let d = b - a;
             let len2 = d.length_squared();
             if len2 == 0.0 {

@@ -1,0 +1,74 @@
+//! Times a boolean on OBJ inputs, the way `../shared/bench/manifold_reference.py` times
+//! manifold3d on the same files, so speed claims are ratios measured in one session.
+//!
+//! usage: cargo run --release --example bench_obj -- union|intersection|difference A.obj B.obj
+//!        [C.obj ...] [--runs N]
+//!
+//! Prints one JSON line: op, input and output triangles, and the median and minimum over the
+//! runs (after one warm-up) of the boolean alone and of the boolean plus `to_mesh` (manifold3d's
+//! result is already a mesh).
+
+use std::time::Instant;
+
+use bspcsg::{BoolOp, Solid, read_mesh};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let mut runs = 9usize;
+    if let Some(i) = args.iter().position(|a| a == "--runs") {
+        runs = args.get(i + 1).ok_or("--runs needs a number")?.parse()?;
+        args.drain(i..i + 2);
+    }
+    let op = match args.first().map(String::as_str) {
+        Some("union") => BoolOp::Union,
+        Some("intersection") => BoolOp::Intersection,
+        Some("difference") => BoolOp::Difference,
+        _ => {
+            return Err(
+                "usage: bench_obj union|intersection|difference A.obj B.obj [...] [--runs N]"
+                    .into(),
+            );
+        }
+    };
+    let mut solids = Vec::new();
+    let mut triangles_in = 0;
+    for path in &args[1..] {
+        let mesh = read_mesh(path.as_ref())?;
+        triangles_in += mesh.triangle_count();
+        solids.push(Solid::from_mesh(&mesh)?);
+    }
+    let combine = || {
+        let mut out = solids[0].clone();
+        for s in &solids[1..] {
+            out = bspcsg::boolean(&out, s, op);
+        }
+        out
+    };
+    let (mut boolean_ms, mut total_ms) = (Vec::new(), Vec::new());
+    let mut triangles_out = 0;
+    for run in 0..=runs {
+        let t0 = Instant::now();
+        let result = combine();
+        let t1 = Instant::now();
+        let mesh = result.to_mesh();
+        let t2 = Instant::now();
+        triangles_out = mesh.triangle_count();
+        if run > 0 {
+            boolean_ms.push((t1 - t0).as_secs_f64() * 1e3);
+            total_ms.push((t2 - t0).as_secs_f64() * 1e3);
+        }
+    }
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        (v[v.len() / 2], v[0])
+    };
+    let (b_med, b_min) = median(&mut boolean_ms);
+    let (t_med, t_min) = median(&mut total_ms);
+    println!(
+        "{{\"op\": \"{}\", \"input_triangles\": {triangles_in}, \"output_triangles\": {triangles_out}, \
+         \"boolean_median_ms\": {b_med:.3}, \"boolean_min_ms\": {b_min:.3}, \
+         \"with_mesh_median_ms\": {t_med:.3}, \"with_mesh_min_ms\": {t_min:.3}, \"runs\": {runs}}}",
+        args[0]
+    );
+    Ok(())
+}
