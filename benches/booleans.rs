@@ -17,6 +17,9 @@ fn sphere_union(c: &mut Criterion) {
             bench.iter(|| &a | &b)
         });
     }
+    // The same with the closed 2-manifold mesh made from the result.
+    let (a, b) = cases::sphere_pair(128);
+    group.bench_function("128x64_to_mesh", |bench| bench.iter(|| (&a | &b).to_mesh()));
     group.finish();
 }
 

@@ -4,6 +4,8 @@
 use glam::{DVec2, DVec3};
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
+use smallvec::SmallVec;
+
 use super::weld::FxHashMap;
 
 /// Triangulates the region of a plane lying to the left of its directed boundary `edges`
@@ -133,13 +135,16 @@ fn ear_clip_loop(
     normal: DVec3,
     edges: &[(u32, u32)],
 ) -> Option<Vec<[u32; 3]>> {
-    let next: FxHashMap<u32, u32> = edges.iter().copied().collect();
-    if next.len() != edges.len() || edges.is_empty() {
-        return None;
-    }
-    let mut ring = vec![edges[0].0];
+    let first = edges.first()?;
+    // Chain the edges (few: a linear search beats a map); a vertex leaving twice is no loop.
+    let mut ring: SmallVec<[u32; 8]> = smallvec::smallvec![first.0];
     while ring.len() <= edges.len() {
-        let &n = next.get(ring.last().expect("ring starts non-empty"))?;
+        let at = *ring.last().expect("ring starts non-empty");
+        let mut out = edges.iter().filter(|e| e.0 == at);
+        let (_, n) = *out.next()?;
+        if out.next().is_some() {
+            return None;
+        }
         if n == ring[0] {
             break;
         }
@@ -148,7 +153,7 @@ fn ear_clip_loop(
     if ring.len() != edges.len() {
         return None;
     }
-    let pts: Vec<DVec3> = ring.iter().map(|&i| positions[i as usize]).collect();
+    let pts: SmallVec<[DVec3; 8]> = ring.iter().map(|&i| positions[i as usize]).collect();
     let tris = ear_clip(&project(&pts, normal))?;
     // Ear clipping decides on the projection; refuse any triangle flat in 3D.
     if tris

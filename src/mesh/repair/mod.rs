@@ -62,11 +62,9 @@ pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64) -> Mesh {
     let delta = WELD_TOLERANCES * eps;
     let mut wide = Wide::default();
     // First the quick pass, then the full T-junction search at the same weld, then wider welds.
-    let mut best = repair(polygons, delta, &wide, true);
-    let mut cracks = crack_vertices(&best);
+    let (mut best, mut cracks) = repair(polygons, delta, &wide, true);
     if !cracks.is_empty() {
-        best = repair(polygons, delta, &wide, false);
-        cracks = crack_vertices(&best);
+        (best, cracks) = repair(polygons, delta, &wide, false);
     }
     let mut fewest = cracks.len();
     let mut reach = delta;
@@ -76,8 +74,8 @@ pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64) -> Mesh {
         }
         reach *= 10.0;
         wide.widen(&cracks, reach);
-        let mesh = repair(polygons, delta, &wide, false);
-        cracks = crack_vertices(&mesh);
+        let mesh;
+        (mesh, cracks) = repair(polygons, delta, &wide, false);
         if cracks.len() < fewest {
             (best, fewest) = (mesh, cracks.len());
         }
@@ -85,30 +83,10 @@ pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64) -> Mesh {
     best
 }
 
-/// The positions of the vertices of edges used by one triangle only.
-fn crack_vertices(mesh: &Mesh) -> Vec<DVec3> {
-    let mut edges: Vec<(u32, u32)> = mesh
-        .triangles
-        .iter()
-        .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
-        .collect();
-    edges.sort_unstable();
-    let mut out = Vec::new();
-    let mut i = 0;
-    while i < edges.len() {
-        let j = edges[i..].iter().take_while(|e| **e == edges[i]).count();
-        if j == 1 {
-            out.push(mesh.positions[edges[i].0 as usize]);
-            out.push(mesh.positions[edges[i].1 as usize]);
-        }
-        i += j;
-    }
-    out
-}
-
 /// One repair pass with weld tolerance `delta` (wider near the `wide` points); `quick` skips the
-/// T-junction search on edges already matched (see [`tjunction::insert_on_edges`]).
-fn repair(polygons: &[Polygon], delta: f64, wide: &Wide, quick: bool) -> Mesh {
+/// T-junction search on edges already matched (see [`tjunction::insert_on_edges`]). Returns the
+/// mesh and the end points of its cracks.
+fn repair(polygons: &[Polygon], delta: f64, wide: &Wide, quick: bool) -> (Mesh, Vec<DVec3>) {
     let corners: Vec<DVec3> = polygons
         .iter()
         .flat_map(|p| p.vertices().iter().copied())

@@ -11,10 +11,12 @@ use crate::mesh::Mesh;
 /// with its clockwise neighbour — the one across the solid's interior wedge. A vertex's corners
 /// linked through twins form fans; each fan gets its own vertex, so solids touching at an edge
 /// or a vertex become separate manifold shells.
+///
+/// Also returns the end points of half-edges left without a twin: the cracks.
 pub(super) fn split_into_shells(
     positions: Vec<DVec3>,
     (triangles, sources): (Vec<[u32; 3]>, Vec<u32>),
-) -> Mesh {
+) -> (Mesh, Vec<DVec3>) {
     let n = triangles.len() * 3;
     let from = |h: usize| triangles[h / 3][h % 3];
     let to = |h: usize| triangles[h / 3][(h % 3 + 1) % 3];
@@ -74,11 +76,16 @@ pub(super) fn split_into_shells(
         }
         out_triangles[h / 3][h % 3] = vertex_of_fan[root];
     }
-    Mesh {
+    let cracks = (0..n)
+        .filter(|&h| twin[h] == u32::MAX)
+        .flat_map(|h| [positions[from(h) as usize], positions[to(h) as usize]])
+        .collect();
+    let mesh = Mesh {
         positions: out_positions,
         triangles: out_triangles,
         sources,
-    }
+    };
+    (mesh, cracks)
 }
 
 /// Pairs the half-edges of a non-manifold edge by the angle of their triangles about it.
