@@ -41,6 +41,13 @@
 //! operand does not blur a small one, because only the region they share counts. A solid made
 //! by a boolean carries its `eps`, and later booleans never use a smaller one.
 //!
+//! # Input range
+//!
+//! Coordinates must be finite and at most [`MAX_COORDINATE`] (10¹⁰⁰) in magnitude; primitive
+//! sizes, transforms and imported meshes that go beyond are refused with an error. Within the
+//! range, features down to about 10⁻¹² of the region where two operands meet are kept: a
+//! 2-unit part inside a box reaching 10³⁸ comes out exact.
+//!
 //! # Stack safety
 //!
 //! Trees live in arenas (`Vec` with `u32` links) and every pass — build, clip, point location,
@@ -65,7 +72,7 @@ mod solid;
 
 pub use boolean::{BoolOp, boolean, boolean_all};
 pub use error::{Error, Result};
-pub use geom::{Aabb, Plane, Side, Tolerance};
+pub use geom::{Aabb, MAX_COORDINATE, Plane, Side, Tolerance};
 pub use io::{
     Format, ParseFormatError, read_mesh, read_mesh_as, read_solid, write_mesh, write_mesh_as,
 };
@@ -79,3 +86,8 @@ pub use sdf::{
 pub use solid::{Containment, PointClassifier, Solid};
 
 pub use glam;
+
+/// The README's example, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

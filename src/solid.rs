@@ -133,10 +133,11 @@ impl Solid {
         self
     }
 
-    /// Moves the solid by `offset`. Non-finite offsets are refused.
+    /// Moves the solid by `offset`. Non-finite offsets, and offsets that would move a vertex
+    /// beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE), are refused.
     pub fn translate(self, offset: DVec3) -> Result<Self> {
         finite_vec("offset", offset)?;
-        Ok(self.map_rigid(DQuat::IDENTITY, offset))
+        in_range(self.map_rigid(DQuat::IDENTITY, offset))
     }
 
     /// Rotates the solid about the origin by a quaternion (normalised here).
@@ -167,7 +168,7 @@ impl Solid {
     /// world axes (`R = Rz · Ry · Rx`), the order scene documents use.
     pub fn rotate_euler(self, degrees: DVec3) -> Result<Self> {
         finite_vec("degrees", degrees)?;
-        Ok(self.map_rigid(euler_degrees(degrees), DVec3::ZERO))
+        in_range(self.map_rigid(euler_degrees(degrees), DVec3::ZERO))
     }
 
     /// Scales uniformly about the origin. The factor must be finite and non-zero; a negative one
@@ -217,7 +218,7 @@ impl Solid {
                 Some(Polygon::with_plane(vs, plane, p.source()))
             })
             .collect();
-        Ok(Solid {
+        in_range(Solid {
             polygons,
             eps: self.eps * det.abs().cbrt(),
         })
@@ -274,6 +275,20 @@ impl PointClassifier {
 pub(crate) fn euler_degrees(degrees: DVec3) -> DQuat {
     let r = degrees * (std::f64::consts::PI / 180.0);
     DQuat::from_euler(EulerRot::ZYX, r.z, r.y, r.x)
+}
+
+/// The solid, or an error where a transform moved it beyond the supported range.
+fn in_range(solid: Solid) -> Result<Solid> {
+    let reach = solid.bbox().max_abs();
+    if reach > crate::geom::MAX_COORDINATE || !reach.is_finite() {
+        Err(Error::param(
+            "transform",
+            reach,
+            "moves the solid beyond the supported range of ±1e100",
+        ))
+    } else {
+        Ok(solid)
+    }
 }
 
 fn finite(name: &'static str, value: f64) -> Result<()> {

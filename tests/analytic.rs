@@ -189,3 +189,23 @@ fn containment() {
     assert_eq!(s.contains(DVec3::new(0.0, 0.9, 0.0)), Containment::Inside);
     assert_eq!(s.contains(DVec3::new(0.0, 1.1, 0.0)), Containment::Outside);
 }
+
+#[test]
+fn coordinates_beyond_the_range_are_refused() {
+    assert!(Solid::cube(1e200).is_err());
+    assert!(Solid::sphere(1e101, 8, 4).is_err());
+    assert!(cube(1.0).translate(DVec3::new(1e150, 0.0, 0.0)).is_err());
+    // A corner at (1e100, 5e99) turned 45° about Z reaches y ≈ 1.06e100.
+    let edge = cube(1e100).translate(DVec3::new(5e99, 0.0, 0.0)).unwrap();
+    assert!(edge.rotate_euler(DVec3::new(0.0, 0.0, 45.0)).is_err());
+    let far = bspcsg::Mesh::new(
+        vec![DVec3::ZERO, DVec3::X * 1e150, DVec3::Y, DVec3::Z],
+        vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],
+    );
+    let err = Solid::from_mesh(&far).unwrap_err().to_string();
+    assert!(err.contains("supported range"), "{err}");
+    // Within the range, a huge box still keeps a small part's detail.
+    let huge = Solid::cube(1e99).unwrap();
+    let hole = &huge - &cube(1.0);
+    assert_relative_eq!(hole.volume(), 1e297 - 1.0, max_relative = 1e-12);
+}

@@ -14,6 +14,7 @@ use glam::DVec3;
 use super::Mesh;
 use crate::error::{Error, Result};
 use crate::geom::Aabb;
+use crate::geom::MAX_COORDINATE;
 
 /// What [`Mesh::report`] finds in an indexed triangle mesh: counts, defects, shells, genus and
 /// orientation.
@@ -543,9 +544,18 @@ impl EdgeTable {
 pub(crate) fn check_finite(positions: &[DVec3], used: impl Fn(usize) -> bool) -> Result<()> {
     let bad = |i: &usize| used(*i) && !positions[*i].is_finite();
     let count = (0..positions.len()).filter(bad).count();
-    match (0..positions.len()).find(bad) {
-        Some(first) => Err(Error::InvalidMesh(format!(
+    if let Some(first) = (0..positions.len()).find(bad) {
+        return Err(Error::InvalidMesh(format!(
             "vertices with a non-finite coordinate: {count} (first: vertex {first} = {})",
+            positions[first]
+        )));
+    }
+    let far = |i: &usize| used(*i) && positions[*i].abs().max_element() > MAX_COORDINATE;
+    let count = (0..positions.len()).filter(far).count();
+    match (0..positions.len()).find(far) {
+        Some(first) => Err(Error::InvalidMesh(format!(
+            "vertices beyond the supported range of ±{MAX_COORDINATE:e}: {count} (first: vertex \
+             {first} = {}); scale the mesh down",
             positions[first]
         ))),
         None => Ok(()),

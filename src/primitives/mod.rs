@@ -65,10 +65,16 @@ pub(crate) fn budget(segments: u32, rings: u32) -> Result<()> {
 }
 
 pub(crate) fn positive(name: &'static str, value: f64) -> Result<()> {
-    if value.is_finite() && value > 0.0 {
-        Ok(())
-    } else {
+    if !(value.is_finite() && value > 0.0) {
         Err(Error::param(name, value, "must be finite and > 0"))
+    } else if value > crate::geom::MAX_COORDINATE {
+        Err(Error::param(
+            name,
+            value,
+            "is beyond the supported range (at most 1e100)",
+        ))
+    } else {
+        Ok(())
     }
 }
 
