@@ -6,6 +6,7 @@ use std::ops::{BitAnd, BitAndAssign, BitOr, BitOrAssign, Sub, SubAssign};
 use rayon::prelude::*;
 
 use crate::bsp::{Coplanar, FOCUS_MARGIN, Label, Surface, Tree};
+use crate::disjoint_sets::DisjointSets;
 use glam::DVec3;
 
 use crate::geom::{Aabb, Plane, Tolerance};
@@ -187,7 +188,7 @@ fn keep_far(polys: &[Polygon], near: &[bool], other: &Surface, keep: Label) -> V
         }
         for &v in p.vertices() {
             let j = *first_at.entry(key(v)).or_insert(i as u32);
-            groups.union(i as u32, j);
+            groups.union(i, j as usize);
         }
     }
     let mut label: Vec<Option<Label>> = vec![None; polys.len()];
@@ -196,42 +197,13 @@ fn keep_far(polys: &[Polygon], near: &[bool], other: &Surface, keep: Label) -> V
         if near[i] {
             continue;
         }
-        let root = groups.find(i as u32) as usize;
+        let root = groups.find(i);
         let l = *label[root].get_or_insert_with(|| other.label(p.centroid()));
         if l == keep {
             kept.push(p.clone());
         }
     }
     kept
-}
-
-/// Union–find with path halving.
-struct DisjointSets {
-    parent: Vec<u32>,
-}
-
-impl DisjointSets {
-    fn new(n: usize) -> Self {
-        DisjointSets {
-            parent: (0..n as u32).collect(),
-        }
-    }
-
-    fn find(&mut self, mut x: u32) -> u32 {
-        while self.parent[x as usize] != x {
-            let grand = self.parent[self.parent[x as usize] as usize];
-            self.parent[x as usize] = grand;
-            x = grand;
-        }
-        x
-    }
-
-    fn union(&mut self, a: u32, b: u32) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            self.parent[ra.max(rb) as usize] = ra.min(rb);
-        }
-    }
 }
 
 /// The result when the operands cannot interact: one is empty or their boxes do not meet.

@@ -61,6 +61,7 @@
 
 mod boolean;
 mod bsp;
+mod disjoint_sets;
 mod error;
 mod geom;
 mod io;

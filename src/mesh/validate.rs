@@ -12,6 +12,7 @@ use std::fmt;
 use glam::DVec3;
 
 use super::Mesh;
+use crate::disjoint_sets::DisjointSets;
 use crate::error::{Error, Result};
 use crate::geom::Aabb;
 use crate::geom::MAX_COORDINATE;
@@ -448,37 +449,6 @@ pub(crate) fn is_zero_area([a, b, c]: [DVec3; 3]) -> bool {
         + b.length() * (c - a).length()
         + c.length() * (a - b).length();
     twice <= MeshReport::ZERO_AREA_ULPS * f64::EPSILON * rounding
-}
-
-/// Union-find with path halving; iterative, so no input can overflow the stack.
-struct DisjointSets {
-    parent: Vec<usize>,
-}
-
-impl DisjointSets {
-    fn new(n: usize) -> Self {
-        DisjointSets {
-            parent: (0..n).collect(),
-        }
-    }
-
-    fn find(&mut self, mut x: usize) -> usize {
-        while self.parent[x] != x {
-            self.parent[x] = self.parent[self.parent[x]];
-            x = self.parent[x];
-        }
-        x
-    }
-
-    /// Joins the sets of `a` and `b`; the smaller root wins, so roots are first members.
-    fn union(&mut self, a: usize, b: usize) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra < rb {
-            self.parent[rb] = ra;
-        } else {
-            self.parent[ra] = rb;
-        }
-    }
 }
 
 /// The half-edges of a set of faces, sorted so that the uses of each undirected edge are

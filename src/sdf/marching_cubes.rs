@@ -14,8 +14,6 @@
 //! - each vertex lies strictly inside its edge (parameter clamped to `[δ, 1 − δ]`), so no two
 //!   vertices coincide even where the surface passes through a grid point.
 
-use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use glam::DVec3;
@@ -26,6 +24,7 @@ use super::mc_table::{TABLE, edge_corners, face_corners};
 use crate::error::{Error, Result};
 use crate::geom::Aabb;
 use crate::mesh::Mesh;
+use crate::mesh::weld::FxHashMap;
 
 /// How to bake a scene into a mesh by marching cubes.
 #[derive(Clone, Debug, PartialEq)]
@@ -595,30 +594,13 @@ fn refine<S: Source + ?Sized>(field: &Field<S>, steps: u32, w: &mut Work) {
     }
 }
 
-#[derive(Default)]
-struct KeyHasher(u64);
-
-impl Hasher for KeyHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 = (self.0.rotate_left(5) ^ b as u64).wrapping_mul(0x517c_c1b7_2722_0a95);
-        }
-    }
-    fn write_u64(&mut self, k: u64) {
-        self.0 = (self.0.rotate_left(5) ^ k).wrapping_mul(0x517c_c1b7_2722_0a95);
-    }
-}
-
 /// Joins the blocks' parts, matching boundary vertices by grid edge.
 fn merge(parts: Vec<Part>) -> Mesh {
     let nv: usize = parts.iter().map(|p| p.positions.len()).sum();
     let nt: usize = parts.iter().map(|p| p.triangles.len()).sum();
     let ns: usize = parts.iter().map(|p| p.shared.len()).sum();
-    let mut seen: HashMap<u64, u32, BuildHasherDefault<KeyHasher>> =
-        HashMap::with_capacity_and_hasher(ns / 2 + 1, Default::default());
+    let mut seen: FxHashMap<u64, u32> =
+        FxHashMap::with_capacity_and_hasher(ns / 2 + 1, Default::default());
     let mut positions = Vec::with_capacity(nv);
     let mut triangles = Vec::with_capacity(nt);
     let mut remap: Vec<u32> = Vec::new();

@@ -2,6 +2,7 @@
 
 use glam::DVec3;
 
+use crate::disjoint_sets::DisjointSets;
 use crate::mesh::Mesh;
 
 /// Builds the mesh with each vertex split into one copy per fan of triangles around it.
@@ -49,27 +50,19 @@ pub(super) fn split_into_shells(
     }
     // Corner h sits at vertex from(h). Around that vertex, the corner of the previous
     // half-edge's twin continues the fan.
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    fn find(parent: &mut [u32], mut x: u32) -> u32 {
-        while parent[x as usize] != x {
-            parent[x as usize] = parent[parent[x as usize] as usize];
-            x = parent[x as usize];
-        }
-        x
-    }
+    let mut fans = DisjointSets::new(n);
     for h in 0..n {
         let prev = h / 3 * 3 + (h % 3 + 2) % 3;
         let t = twin[prev];
         if t != u32::MAX {
-            let (x, y) = (find(&mut parent, h as u32), find(&mut parent, t));
-            parent[x.max(y) as usize] = x.min(y);
+            fans.union(h, t as usize);
         }
     }
     let mut vertex_of_fan: Vec<u32> = vec![u32::MAX; n];
     let mut out_positions = Vec::with_capacity(positions.len());
     let mut out_triangles = vec![[0u32; 3]; triangles.len()];
     for h in 0..n {
-        let root = find(&mut parent, h as u32) as usize;
+        let root = fans.find(h);
         if vertex_of_fan[root] == u32::MAX {
             vertex_of_fan[root] = out_positions.len() as u32;
             out_positions.push(positions[from(h) as usize]);

@@ -1,0 +1,34 @@
+//! Union–find over `0..n` with path halving: iterative, so no input can overflow the stack.
+
+/// Disjoint sets of the integers `0..n`.
+pub(crate) struct DisjointSets {
+    parent: Vec<usize>,
+}
+
+impl DisjointSets {
+    /// `n` singleton sets.
+    pub fn new(n: usize) -> Self {
+        DisjointSets {
+            parent: (0..n).collect(),
+        }
+    }
+
+    /// The root of `x`'s set.
+    pub fn find(&mut self, mut x: usize) -> usize {
+        while self.parent[x] != x {
+            self.parent[x] = self.parent[self.parent[x]];
+            x = self.parent[x];
+        }
+        x
+    }
+
+    /// Joins the sets of `a` and `b`; the smaller root wins, so a set's root is its first member.
+    pub fn union(&mut self, a: usize, b: usize) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra < rb {
+            self.parent[rb] = ra;
+        } else {
+            self.parent[ra] = rb;
+        }
+    }
+}
