@@ -142,12 +142,12 @@ impl Solid {
 
     /// Rotates the solid about the origin by a quaternion (normalised here).
     pub fn rotate(self, rotation: DQuat) -> Result<Self> {
-        let q = rotation.try_normalize_quat().ok_or(Error::param(
+        let q = normalized(rotation).ok_or(Error::param(
             "rotation",
             rotation.length(),
             "must be a finite, non-zero quaternion",
         ))?;
-        Ok(self.map_rigid(q, DVec3::ZERO))
+        in_range(self.map_rigid(q, DVec3::ZERO))
     }
 
     /// Rotates by `degrees` about `axis` (right-handed).
@@ -158,7 +158,7 @@ impl Solid {
             axis.length(),
             "must be a finite, non-zero vector",
         ))?;
-        Ok(self.map_rigid(
+        in_range(self.map_rigid(
             DQuat::from_axis_angle(axis, degrees.to_radians()),
             DVec3::ZERO,
         ))
@@ -306,15 +306,10 @@ fn finite_vec(name: &'static str, v: DVec3) -> Result<()> {
     Ok(())
 }
 
-trait TryNormalizeQuat: Sized {
-    fn try_normalize_quat(self) -> Option<Self>;
-}
-
-impl TryNormalizeQuat for DQuat {
-    fn try_normalize_quat(self) -> Option<Self> {
-        let len = self.length();
-        (len.is_finite() && len > 0.0).then(|| self / len)
-    }
+/// The unit quaternion along `q`, if `q` is finite and not zero.
+fn normalized(q: DQuat) -> Option<DQuat> {
+    let len = q.length();
+    (len.is_finite() && len > 0.0).then(|| q / len)
 }
 
 impl From<&Solid> for Mesh {

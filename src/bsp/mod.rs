@@ -135,8 +135,8 @@ impl Tree {
         }
     }
 
-    /// Depth of the deepest leaf (for tests and benches).
-    #[allow(dead_code)]
+    /// Depth of the deepest leaf.
+    #[cfg(test)]
     pub fn depth(&self) -> usize {
         let mut deepest = 0;
         let mut stack = vec![(self.root, 0usize)];
@@ -198,5 +198,21 @@ impl Tree {
             (false, true) => Some(Label::Outside),
             _ => None,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solid::Solid;
+
+    /// csg.js's first-polygon splitter makes a convex solid a chain as deep as its polygon
+    /// count; cell splits keep it logarithmic with a short face chain at the bottom.
+    #[test]
+    fn trees_of_convex_solids_stay_shallow() {
+        let sphere = Solid::sphere(1.0, 128, 64).unwrap();
+        let n = sphere.polygon_count();
+        let tree = Tree::build(sphere.into_polygons(), 1e-12);
+        assert!(tree.depth() < 64, "depth {} for {n} polygons", tree.depth());
     }
 }

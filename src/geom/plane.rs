@@ -118,11 +118,4 @@ impl Plane {
             && ((self.normal == other.normal && self.offset == other.offset)
                 || (self.normal == -other.normal && self.offset == -other.offset))
     }
-
-    /// True when both planes are the same oriented plane within `eps` at points within
-    /// `radius` of the origin-side foot of the plane.
-    pub fn approx_eq(&self, other: &Plane, eps: f64, radius: f64) -> bool {
-        (self.offset - other.offset).abs() <= eps
-            && (self.normal - other.normal).length() * radius.max(1.0) <= eps
-    }
 }
