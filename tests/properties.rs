@@ -43,8 +43,17 @@ fn close(a: f64, b: f64, scale: f64) -> bool {
     (a - b).abs() <= 1e-9 * scale
 }
 
+/// 256 cases, or more where `PROPTEST_CASES` asks for them (a deeper run by hand).
+fn cases() -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0)
+        .max(256)
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig::with_cases(cases()))]
 
     #[test]
     fn inclusion_exclusion(a in placed(), b in placed()) {
@@ -134,4 +143,36 @@ fn affine_maps_scale_volume_by_determinant() {
     assert!((sheared.volume() - 3.0 * v).abs() < 1e-12 * v);
     assert!(a.clone().scale(0.0).is_err());
     assert!(a.translate(DVec3::new(f64::NAN, 0.0, 0.0)).is_err());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(cases() / 4))]
+
+    /// A program of booleans, each on the previous result and a new placed primitive, as
+    /// manifold's fuzzer runs programs of cube transforms: results fed back in carry their
+    /// tolerance and their T-junctions. Every step keeps inclusion–exclusion and a clean mesh.
+    #[test]
+    fn chained_booleans_stay_closed(first in placed(),
+                                    steps in prop::collection::vec((0u8..3, placed()), 1..8)) {
+        let mut acc = first;
+        for (k, (op, p)) in steps.into_iter().enumerate() {
+            let (va, vp) = (acc.volume(), p.volume());
+            let inter = (&acc & &p).volume();
+            let next = match op {
+                0 => &acc | &p,
+                1 => &acc & &p,
+                _ => &acc - &p,
+            };
+            let expect = match op {
+                0 => va + vp - inter,
+                1 => inter,
+                _ => va - inter,
+            };
+            prop_assert!(close(next.volume(), expect, va.max(vp)),
+                "step {k}: volume {} but expected {expect}", next.volume());
+            let report = next.to_mesh().report();
+            prop_assert!(report.is_closed_manifold(), "step {k}: {report}");
+            acc = next;
+        }
+    }
 }
