@@ -91,6 +91,14 @@ where
 }
 
 /// `bspcsg info --json PATH`, parsed.
+/// `bspcsg OP INPUT… -o OUT`.
+fn combine(op: &str, inputs: &[&Path], out: &Path) -> Run {
+    let mut args = vec![OsStr::new(op)];
+    args.extend(inputs.iter().map(|p| p.as_os_str()));
+    args.extend([OsStr::new("-o"), out.as_os_str()]);
+    bspcsg(args)
+}
+
 fn info(path: &Path) -> Value {
     let run = bspcsg([OsStr::new("info"), path.as_os_str(), OsStr::new("--json")]).ok();
     serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("{e}: {}", run.stdout))
@@ -231,14 +239,7 @@ fn info_json_keys_and_values() {
         write(&dir.path("b.obj"), &cube_at(0.5).to_mesh()),
     );
     let out = dir.path("u.glb");
-    bspcsg([
-        OsStr::new("union"),
-        a.as_os_str(),
-        b.as_os_str(),
-        OsStr::new("-o"),
-        out.as_os_str(),
-    ])
-    .ok();
+    combine("union", &[&a, &b], &out).ok();
     let v = info(&out);
     let mut keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
     keys.sort_unstable();
@@ -274,14 +275,7 @@ fn info_json_keys_and_values() {
     let bar = Solid::cylinder(0.2, 2.0, 32).unwrap().to_mesh();
     let bar = write(&dir.path("bar.stl"), &bar);
     let ring = dir.path("ring.obj");
-    bspcsg([
-        OsStr::new("difference"),
-        a.as_os_str(),
-        bar.as_os_str(),
-        OsStr::new("-o"),
-        ring.as_os_str(),
-    ])
-    .ok();
+    combine("difference", &[&a, &bar], &ring).ok();
     let v = info(&ring);
     assert_solid(&v, "ring");
     assert_eq!(v["genus"], 1);
@@ -289,14 +283,7 @@ fn info_json_keys_and_values() {
     // Two disjoint cubes are two components.
     let c = write(&dir.path("c.obj"), &cube_at(3.0).to_mesh());
     let two = dir.path("two.obj");
-    bspcsg([
-        OsStr::new("union"),
-        a.as_os_str(),
-        c.as_os_str(),
-        OsStr::new("-o"),
-        two.as_os_str(),
-    ])
-    .ok();
+    combine("union", &[&a, &c], &two).ok();
     let v = info(&two);
     assert_eq!(
         (v["components"].as_u64(), v["genus"].as_u64()),
@@ -506,14 +493,7 @@ fn real_open_and_non_manifold_meshes_are_refused() {
             assert!(!out.exists());
         }
         // As the second input too.
-        let r = bspcsg([
-            OsStr::new("intersection"),
-            probe.as_os_str(),
-            bad.as_os_str(),
-            OsStr::new("-o"),
-            out.as_os_str(),
-        ])
-        .code(2);
+        let r = combine("intersection", &[&probe, &bad], &out).code(2);
         assert!(r.stderr.contains(name) && r.stderr.contains(counts));
         assert_eq!(dir.files(), ["probe.obj"]);
 
@@ -668,14 +648,7 @@ fn invalid_geometry_exits_2() {
         (&open, "open.obj is not closed: 3 boundary edges"),
         (&inverted, "inverted.stl is inside out"),
     ] {
-        let r = bspcsg([
-            OsStr::new("union"),
-            good.as_os_str(),
-            bad.as_os_str(),
-            OsStr::new("-o"),
-            out.as_os_str(),
-        ])
-        .code(2);
+        let r = combine("union", &[&good, bad], &out).code(2);
         assert!(r.stderr.contains(needle), "{}", r.stderr);
     }
     // Coordinates beyond float32 cannot be written to STL or glTF.
@@ -816,14 +789,7 @@ fn unknown_extensions_exit_1() {
     );
     assert!(!out.exists());
     let noext = dir.path("noext");
-    bspcsg([
-        OsStr::new("union"),
-        good.as_os_str(),
-        good.as_os_str(),
-        OsStr::new("-o"),
-        noext.as_os_str(),
-    ])
-    .code(1);
+    combine("union", &[&good, &good], &noext).code(1);
     assert!(!noext.exists());
 }
 
@@ -1102,14 +1068,7 @@ fn union_with_float32_sphere_is_closed() {
         assert_solid(&info(out), "input");
     }
     let out = dir.path("union.obj");
-    bspcsg([
-        OsStr::new("union"),
-        cube.as_os_str(),
-        ball.as_os_str(),
-        OsStr::new("-o"),
-        out.as_os_str(),
-    ])
-    .ok();
+    combine("union", &[&cube, &ball], &out).ok();
     assert_solid(&info(&out), "box ∪ float32 sphere");
 
     if let Some(models) = models() {
@@ -1127,14 +1086,7 @@ fn union_with_float32_sphere_is_closed() {
         ])
         .ok();
         let out = dir.path("spot-cut.obj");
-        bspcsg([
-            OsStr::new("difference"),
-            models.join("spot.obj").as_os_str(),
-            glb.as_os_str(),
-            OsStr::new("-o"),
-            out.as_os_str(),
-        ])
-        .ok();
+        combine("difference", &[&models.join("spot.obj"), &glb], &out).ok();
         assert_solid(&info(&out), "spot − float32 sphere");
     }
 }

@@ -184,16 +184,21 @@ fn three_triangles_on_one_edge() {
     assert_eq!(r.genus, None);
 }
 
-#[test]
-fn zero_area_triangle_is_degenerate() {
-    // The tetrahedron with edge 0-1 split at m on one side only, and the crack closed by the
-    // zero-area triangle [1, 0, m]: closed and oriented, but degenerate.
+/// The tetrahedron with edge 0-1 split at m on one side only, and the crack closed by the
+/// zero-area triangle [1, 0, m]: closed and oriented, but degenerate.
+fn tetra_with_zero_area_triangle() -> Mesh {
     let mut m = tetra();
     m.positions.push(DVec3::new(0.5, 0.0, 0.0));
     m.triangles[0] = [0, 2, 4];
     m.triangles.push([4, 2, 1]);
     m.triangles.push([1, 0, 4]);
     m.sources.resize(m.triangles.len(), 0);
+    m
+}
+
+#[test]
+fn zero_area_triangle_is_degenerate() {
+    let m = tetra_with_zero_area_triangle();
     let r = m.report();
     assert_eq!((r.degenerate_triangles, r.repeated_index_triangles), (1, 0));
     assert!(r.closed && r.oriented);
@@ -403,12 +408,7 @@ fn from_mesh_refuses_bad_input() {
 
 #[test]
 fn from_mesh_skips_zero_area() {
-    let mut m = tetra();
-    m.positions.push(DVec3::new(0.5, 0.0, 0.0));
-    m.triangles[0] = [0, 2, 4];
-    m.triangles.push([4, 2, 1]);
-    m.triangles.push([1, 0, 4]);
-    m.sources.resize(m.triangles.len(), 0);
+    let m = tetra_with_zero_area_triangle();
     let s = Solid::from_mesh(&m).unwrap();
     assert_eq!(s.polygon_count(), 5);
     assert_relative_eq!(s.volume(), 1.0 / 6.0, max_relative = 1e-14);
