@@ -210,11 +210,17 @@ fn keep_far(polys: &[Polygon], near: &[bool], other: &Surface, keep: Label) -> V
 fn disjoint(a: Solid, b: Solid, op: BoolOp) -> Solid {
     match op {
         BoolOp::Union => {
-            // Two parts of different scales: the finer tolerance serves both.
+            // Two parts of different scales: the finer tolerance serves both, but never below
+            // what either already carries (its fragments were made with that).
             let eps = match (a.is_empty(), b.is_empty()) {
                 (true, _) => b.carried_eps(),
                 (_, true) => a.carried_eps(),
-                _ => a.tolerance().eps().min(b.tolerance().eps()),
+                _ => a
+                    .tolerance()
+                    .eps()
+                    .min(b.tolerance().eps())
+                    .max(a.carried_eps())
+                    .max(b.carried_eps()),
             };
             let mut polygons = a.into_polygons();
             polygons.extend(b.into_polygons());

@@ -204,8 +204,85 @@ fn coordinates_beyond_the_range_are_refused() {
     );
     let err = Solid::from_mesh(&far).unwrap_err().to_string();
     assert!(err.contains("supported range"), "{err}");
-    // Within the range, a huge box still keeps a small part's detail.
+    // Within the range, a huge box still keeps a small part's detail: the unit cavity is its
+    // own shell (its volume, 1 in 1e297, is below what f64 can show).
     let huge = Solid::cube(1e99).unwrap();
     let hole = &huge - &cube(1.0);
-    assert_relative_eq!(hole.volume(), 1e297 - 1.0, max_relative = 1e-12);
+    assert_eq!(hole.contains(DVec3::ZERO), Containment::Outside);
+    assert_eq!(hole.contains(DVec3::splat(0.6)), Containment::Inside);
+    let (shells, _) = shells_and_genus(&assert_clean_mesh(&hole, "cavity"), "cavity");
+    assert_eq!(shells, 2);
+}
+
+#[test]
+fn disjoint_union_keeps_the_tolerance_its_parts_carry() {
+    // Two overlapping spheres far out (their union carries a tolerance of their scale), then a
+    // tiny cube far from them: the tiny cube must not lower that tolerance below what the
+    // spheres' fragments were made with.
+    let s = Solid::sphere(1.0, 24, 12).unwrap();
+    let pair = &moved(&s, 1000.0, 0.0, 0.0) | &moved(&s, 1000.5, 0.0, 0.0);
+    let u = &pair | &cube(1e-3);
+    let (shells, genus) = shells_and_genus(&assert_clean_mesh(&u, "far pair and tiny cube"), "u");
+    assert_eq!((shells, genus), (2, 0));
+}
+
+#[test]
+fn tangent_cylinders_with_coincident_faces_open_the_cavity() {
+    // B lies inside A and its two side faces next to x = 0.5 lie inside A's faces there (same
+    // plane, same outward direction). A − B has no surface where they coincide: the cavity
+    // opens through A's skin, and the area is A's and B's less twice the shared faces.
+    let (n, r, h) = (24u32, 0.375, 0.75);
+    let a = Solid::cylinder(0.5, 1.0, n).unwrap();
+    let b = moved(&Solid::cylinder(r, h, n).unwrap(), 0.125, 0.0, 0.0);
+    let d = &a - &b;
+    let shared_face = 2.0 * r * (std::f64::consts::PI / n as f64).sin() * h;
+    assert_relative_eq!(
+        d.area(),
+        a.area() + b.area() - 4.0 * shared_face,
+        max_relative = 1e-12
+    );
+    assert_relative_eq!(d.volume(), a.volume() - b.volume(), max_relative = 1e-12);
+    let (shells, genus) = shells_and_genus(&assert_clean_mesh(&d, "open cavity"), "open cavity");
+    assert_eq!((shells, genus), (1, 0));
+}
+
+#[test]
+fn inside_out_meshes_are_refused() {
+    let mut m = cube(1.0).to_mesh();
+    for t in &mut m.triangles {
+        t.swap(1, 2);
+    }
+    let err = Solid::from_mesh(&m).unwrap_err().to_string();
+    assert!(err.contains("inside out"), "{err}");
+    let faces: Vec<[u32; 3]> = m.triangles.clone();
+    assert!(Solid::polyhedron(&m.positions, &faces).is_err());
+}
+
+#[test]
+fn a_star_prism_of_thousands_of_points_triangulates_quickly() {
+    // Non-convex caps take the O(n log n) triangulation, not O(n³) ear clipping.
+    let n = 2000usize;
+    let ring: Vec<DVec3> = (0..n)
+        .map(|k| {
+            let t = std::f64::consts::TAU * k as f64 / n as f64;
+            let rad = if k % 2 == 0 { 1.0 } else { 0.6 };
+            DVec3::new(rad * t.cos(), rad * t.sin(), 0.0)
+        })
+        .collect();
+    let mut v = ring.clone();
+    v.extend(ring.iter().map(|p| *p + DVec3::Z));
+    let n32 = n as u32;
+    let mut faces: Vec<Vec<u32>> = vec![(0..n32).rev().collect(), (n32..2 * n32).collect()];
+    for k in 0..n32 {
+        let k1 = (k + 1) % n32;
+        faces.push(vec![k, k1, n32 + k1, n32 + k]);
+    }
+    let t0 = std::time::Instant::now();
+    let prism = Solid::polyhedron(&v, &faces).unwrap();
+    assert!(t0.elapsed().as_secs_f64() < 10.0, "took {:?}", t0.elapsed());
+    let cap: f64 = (0..n)
+        .map(|k| ring[k].truncate().perp_dot(ring[(k + 1) % n].truncate()) * 0.5)
+        .sum();
+    assert_relative_eq!(prism.volume(), cap, max_relative = 1e-12);
+    assert_clean_mesh(&prism, "star prism");
 }

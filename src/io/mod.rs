@@ -175,36 +175,14 @@ pub fn read_mesh_as(path: &Path, format: Format) -> Result<Mesh> {
 /// the path, when the mesh does not bound a solid.
 pub fn read_solid(path: &Path, options: &FromMeshOptions) -> Result<Solid> {
     let mesh = read_mesh(path)?;
-    let invalid = |what: String| Error::InvalidMesh(format!("{} {what}", path.display()));
-    if options.require_closed {
-        let report = mesh.report();
-        let defects: Vec<String> = [
-            (report.boundary_edges, "boundary edges"),
-            (report.non_manifold_edges, "non-manifold edges"),
-            (report.inconsistent_edges, "inconsistently oriented edges"),
-        ]
-        .into_iter()
-        .filter(|&(n, _)| n > 0)
-        .map(|(n, what)| format!("{n} {what}"))
-        .collect();
-        if !defects.is_empty() {
-            return Err(invalid(format!(
-                "is not closed: {} (of {} edges)",
-                defects.join(", "),
-                report.edges
-            )));
-        }
-        if report.inverted_shells > 0 {
-            return Err(invalid(format!(
-                "is inside out: {} of {} shells enclose no positive volume and are not \
-                 cavities (faces must wind counter-clockwise seen from outside)",
-                report.inverted_shells,
-                report.shells.len()
-            )));
-        }
-    }
     Solid::from_mesh_with(&mesh, options).map_err(|e| match e {
-        Error::InvalidMesh(m) => invalid(format!("is not a valid solid: {m}")),
+        // "x.obj is not closed: …", "x.obj is inside out: …", else "is not a valid solid".
+        Error::InvalidMesh(m) if m.starts_with("not closed") || m.starts_with("inside out") => {
+            Error::InvalidMesh(format!("{} is {m}", path.display()))
+        }
+        Error::InvalidMesh(m) => {
+            Error::InvalidMesh(format!("{} is not a valid solid: {m}", path.display()))
+        }
         other => other,
     })
 }

@@ -12,8 +12,9 @@ use crate::solid::Solid;
 /// [`FromMeshOptions::lenient`] for input that is known to be imperfect.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FromMeshOptions {
-    /// Refuse meshes that do not close up (default `true`): every edge must be used by exactly
-    /// two triangles in opposite directions, and no triangle may repeat a vertex index.
+    /// Refuse meshes that do not bound a solid (default `true`): every edge must be used by
+    /// exactly two triangles in opposite directions, no triangle may repeat a vertex index, and
+    /// every shell must enclose positive volume or be a cavity of one that does.
     ///
     /// With `false`, open, non-manifold and inconsistently oriented meshes are accepted as they
     /// are and triangles that repeat an index are dropped. Booleans on such a solid still
@@ -91,8 +92,9 @@ impl Solid {
     /// - a position used by a triangle has a NaN or infinite coordinate (unused ones are
     ///   ignored);
     /// - with [`require_closed`](FromMeshOptions::require_closed) (the default): a triangle
-    ///   repeats an index, or the mesh is not closed (edges used by one triangle, by more than
-    ///   two, or by two in the same direction).
+    ///   repeats an index, the mesh is not closed (edges used by one triangle, by more than
+    ///   two, or by two in the same direction), or it is inside out (a shell winds clockwise
+    ///   seen from outside and is no cavity).
     ///
     /// Triangles of zero area (by [`MeshReport::ZERO_AREA_ULPS`](crate::MeshReport::ZERO_AREA_ULPS)) are
     /// skipped: they bound no area, and the plane of a sliver is noise that would mislead
@@ -119,6 +121,15 @@ impl Solid {
         check_finite(&mesh.positions, |i| used[i])?;
         if options.require_closed {
             check_closed(&mesh.triangles)?;
+            let report = mesh.report();
+            if report.inverted_shells > 0 {
+                return Err(Error::InvalidMesh(format!(
+                    "inside out: {} of {} shells enclose no positive volume and are not \
+                     cavities (faces must wind counter-clockwise seen from outside)",
+                    report.inverted_shells,
+                    report.shells.len()
+                )));
+            }
         }
         // One polygon per triangle of non-zero area. Repeated indices were refused or have
         // zero area, so Polygon::new only fails where Newell's method finds no plane at all.

@@ -52,16 +52,29 @@ impl Mesh {
     }
 
     /// The corner positions of triangle `t`.
+    ///
+    /// # Panics
+    ///
+    /// When `t` or one of its vertex indices is out of range, like slice indexing. The
+    /// measurements below skip such triangles instead; [`Mesh::report`] counts them.
     pub fn triangle(&self, t: usize) -> [DVec3; 3] {
         self.triangles[t].map(|i| self.positions[i as usize])
+    }
+
+    /// The corners of every triangle whose indices are all in range.
+    fn valid_triangles(&self) -> impl Iterator<Item = [DVec3; 3]> + '_ {
+        self.triangles.iter().filter_map(|t| {
+            let [a, b, c] = t.map(|i| self.positions.get(i as usize).copied());
+            Some([a?, b?, c?])
+        })
     }
 
     /// The bounding box of the vertices used by triangles.
     pub fn bbox(&self) -> Aabb {
         let mut b = Aabb::EMPTY;
-        for t in &self.triangles {
-            for &i in t {
-                b.grow(self.positions[i as usize]);
+        for t in self.valid_triangles() {
+            for p in t {
+                b.grow(p);
             }
         }
         b
@@ -71,9 +84,10 @@ impl Mesh {
     /// meshes far from the origin lose no precision. Positive for outward-facing closed meshes.
     pub fn volume(&self) -> f64 {
         let c = self.bbox().center();
-        let sum: f64 = (0..self.triangles.len())
+        let sum: f64 = self
+            .valid_triangles()
             .map(|t| {
-                let [a, b, d] = self.triangle(t).map(|p| p - c);
+                let [a, b, d] = t.map(|p| p - c);
                 a.dot(b.cross(d))
             })
             .sum();
@@ -82,11 +96,8 @@ impl Mesh {
 
     /// Total surface area.
     pub fn area(&self) -> f64 {
-        (0..self.triangles.len())
-            .map(|t| {
-                let [a, b, c] = self.triangle(t);
-                0.5 * (b - a).cross(c - a).length()
-            })
+        self.valid_triangles()
+            .map(|[a, b, c]| 0.5 * (b - a).cross(c - a).length())
             .sum()
     }
 }

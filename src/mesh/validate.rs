@@ -588,14 +588,24 @@ pub(crate) fn repeats(face: &[u32]) -> bool {
 /// opposite directions. Faces must have passed [`check_face_indices`] without repeats.
 pub(crate) fn check_closed<F: AsRef<[u32]>>(faces: &[F]) -> Result<()> {
     let c = EdgeTable::new(faces, |_| true).counts();
-    if c.boundary + c.non_manifold + c.inconsistent > 0 {
-        return Err(Error::InvalidMesh(format!(
-            "not closed: {} boundary edges, {} non-manifold edges, {} inconsistently oriented \
-             edges (of {} edges)",
-            c.boundary, c.non_manifold, c.inconsistent, c.edges
-        )));
+    let defects: Vec<String> = [
+        (c.boundary, "boundary edges"),
+        (c.non_manifold, "non-manifold edges"),
+        (c.inconsistent, "inconsistently oriented edges"),
+    ]
+    .into_iter()
+    .filter(|&(n, _)| n > 0)
+    .map(|(n, what)| format!("{n} {what}"))
+    .collect();
+    if defects.is_empty() {
+        Ok(())
+    } else {
+        Err(Error::InvalidMesh(format!(
+            "not closed: {} (of {} edges)",
+            defects.join(", "),
+            c.edges
+        )))
     }
-    Ok(())
 }
 
 impl fmt::Display for MeshReport {

@@ -2,7 +2,7 @@ use glam::DVec3;
 
 use crate::error::{Error, Result};
 use crate::geom::{Plane, Tolerance};
-use crate::mesh::triangulate::{ear_clip, project};
+use crate::mesh::triangulate::triangulate_boundary;
 use crate::mesh::validate;
 use crate::polygon::Polygon;
 use crate::solid::Solid;
@@ -39,19 +39,31 @@ impl Solid {
                 polygons.push(Polygon::with_plane(pts.as_slice().into(), plane, 0));
                 continue;
             }
-            let tris = ear_clip(&project(&pts, plane.normal)).ok_or_else(|| {
+            // The face's boundary as one loop, triangulated in O(n log n) (a star-shaped profile
+            // of thousands of points is common in extrusions).
+            let n = pts.len() as u32;
+            let edges: Vec<(u32, u32)> = (0..n).map(|k| (k, (k + 1) % n)).collect();
+            let tris = triangulate_boundary(&pts, plane.normal, &edges).ok_or_else(|| {
                 Error::InvalidMesh(format!(
                     "face {fi} is self-intersecting and cannot be triangulated"
                 ))
             })?;
             for t in tris {
                 // Slivers of a non-convex face may have no plane of their own: they add nothing.
-                if let Some(p) = Polygon::new(t.map(|k| pts[k]).as_slice(), 0) {
+                if let Some(p) = Polygon::new(t.map(|k| pts[k as usize]).as_slice(), 0) {
                     polygons.push(p);
                 }
             }
         }
-        Ok(Solid::from_polygons(polygons))
+        let solid = Solid::from_polygons(polygons);
+        if solid.volume() <= 0.0 {
+            return Err(Error::InvalidMesh(
+                "inside out: the faces enclose no positive volume (they must wind \
+                 counter-clockwise seen from outside)"
+                    .into(),
+            ));
+        }
+        Ok(solid)
     }
 }
 
