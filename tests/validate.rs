@@ -347,7 +347,7 @@ fn from_mesh_refuses_open_with_counts() {
     m.sources.pop();
     let msg = invalid_message(Solid::from_mesh(&m));
     assert!(
-        msg.contains("not closed: 3 boundary edges, 0 non-manifold edges"),
+        msg.contains("not closed: 3 boundary edges (of 18 edges)"),
         "{msg}"
     );
     // The lenient path goes on.
