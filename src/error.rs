@@ -55,9 +55,12 @@ pub enum Error {
         message: String,
     },
 
-    /// A scene document is invalid. `json_path` locates the fault, e.g. `$.children[2].data.radius`.
-    #[error("{json_path}: {message}")]
+    /// A scene document is invalid. `json_path` locates the fault, e.g. `$.children[2].data.radius`;
+    /// `file` names the document where it was read from a file.
+    #[error("{}{json_path}: {message}", file.as_ref().map(|f| format!("{}: ", f.display())).unwrap_or_default())]
     Scene {
+        /// The document's file, when it came from one.
+        file: Option<PathBuf>,
         /// Where in the document the fault is.
         json_path: String,
         /// What is wrong.

@@ -4,7 +4,9 @@ use bspcsg::{Error, Scene};
 
 fn fault(json: &str) -> (String, String) {
     match Scene::from_json_str(json) {
-        Err(Error::Scene { json_path, message }) => (json_path, message),
+        Err(Error::Scene {
+            json_path, message, ..
+        }) => (json_path, message),
         Err(e) => panic!("not a scene error: {e}"),
         Ok(_) => panic!("accepted: {json}"),
     }

@@ -350,8 +350,12 @@ fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Result<(), Fa
     for (i, path) in args.inputs.iter().enumerate() {
         progress.step(format!("reading {}", path.display()));
         let solid = read_solid(path, &options).map_err(|e| {
+            // The flag helps with open or inside-out input only, and only if not given yet.
+            let hint = !args.allow_open
+                && matches!(&e, Error::InvalidMesh(m)
+                    if m.contains(" is not closed") || m.contains(" is inside out"));
             let mut f = Failure::from(e);
-            if f.code == 2 {
+            if hint {
                 f.message.push_str(" (pass --allow-open to go on anyway)");
             }
             f
@@ -379,10 +383,10 @@ fn convert(args: &ConvertArgs, progress: &Progress) -> Result<(), Failure> {
 /// `export`.
 fn export(args: &ExportArgs, progress: &Progress) -> Result<(), Failure> {
     let (out, format) = output_target(&args.output)?;
-    // Scene faults carry a JSON path and option faults a name, but not the file: name it here.
-    // I/O errors name it already.
+    // Option faults carry a name but not the file: name it here. I/O and scene errors name it
+    // already.
     let in_scene = |e: Error| match e {
-        Error::Io { .. } => Failure::from(e),
+        Error::Io { .. } | Error::Scene { .. } => Failure::from(e),
         other => {
             let mut f = Failure::from(other);
             f.message = format!("{}: {}", args.scene.display(), f.message);

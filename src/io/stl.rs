@@ -42,7 +42,8 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh> {
                 path,
                 None,
                 format!(
-                    "damaged binary STL: its header announces {n} triangles, {} bytes, but the                      file has {} bytes{why}",
+                    "damaged binary STL: its header announces {n} triangles, {} bytes, but the \
+                     file has {} bytes{why}",
                     binary_size(n).unwrap_or(u64::MAX),
                     bytes.len()
                 ),

@@ -525,8 +525,10 @@ pub(crate) fn check_finite(positions: &[DVec3], used: impl Fn(usize) -> bool) ->
     match (0..positions.len()).find(far) {
         Some(first) => Err(Error::InvalidMesh(format!(
             "vertices beyond the supported range of ±{MAX_COORDINATE:e}: {count} (first: vertex \
-             {first} = {}); scale the mesh down",
-            positions[first]
+             {first} = [{:e}, {:e}, {:e}]); scale the mesh down",
+            positions[first].x,
+            positions[first].y,
+            positions[first].z
         ))),
         None => Ok(()),
     }

@@ -46,6 +46,7 @@ impl Scene {
         }
         if !(world.min.is_finite() && world.max.is_finite()) {
             return Err(Error::Scene {
+                file: None,
                 json_path: "$".into(),
                 message: "the scene is unbounded (a half-space not intersected with a bounded \
                           shape), so it has no solid"

@@ -361,6 +361,7 @@ impl Program {
 
 fn singular() -> Error {
     Error::Scene {
+        file: None,
         json_path: "$".into(),
         message: "the nested transforms compose to a map that cannot be inverted in f64 \
                   (scales too small or too large)"

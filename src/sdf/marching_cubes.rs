@@ -117,6 +117,7 @@ impl Grid {
                 }
                 if !(solid_box.min.is_finite() && solid_box.max.is_finite()) {
                     return Err(Error::Scene {
+                        file: None,
                         json_path: "$".into(),
                         message: "the scene is unbounded (a half-space not intersected with a \
                                   bounded shape); give BakeOptions::bounds"

@@ -95,6 +95,7 @@ impl Scene {
     /// `docs/scene-format.md`). Every fault is an [`Error::Scene`] naming its JSON path.
     pub fn from_json_str(json: &str) -> Result<Scene> {
         let value: Value = serde_json::from_str(json).map_err(|e| Error::Scene {
+            file: None,
             json_path: "$".into(),
             message: format!("not valid JSON: {e}"),
         })?;
@@ -108,7 +109,16 @@ impl Scene {
             path: path.to_path_buf(),
             source,
         })?;
-        Scene::from_json_str(&text)
+        Scene::from_json_str(&text).map_err(|e| match e {
+            Error::Scene {
+                json_path, message, ..
+            } => Error::Scene {
+                file: Some(path.to_path_buf()),
+                json_path,
+                message,
+            },
+            other => other,
+        })
     }
 
     /// Builds a scene from an already parsed JSON value.
@@ -152,6 +162,7 @@ impl Scene {
 
 fn fault(path: &str, message: impl Into<String>) -> Error {
     Error::Scene {
+        file: None,
         json_path: path.to_string(),
         message: message.into(),
     }
