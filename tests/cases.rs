@@ -31,6 +31,8 @@ fn sequential_and_balanced_unions_agree() {
     let sequential = bars.iter().fold(Solid::empty(), |acc, b| &acc | b);
     let balanced = Solid::union_all(bars);
     assert_relative_eq!(sequential.volume(), balanced.volume(), max_relative = 1e-12);
+    assert_clean_mesh(&sequential, "sequential union");
+    assert_clean_mesh(&balanced, "balanced union");
 }
 
 #[test]

@@ -90,7 +90,6 @@ where
     }
 }
 
-/// `bspcsg info --json PATH`, parsed.
 /// `bspcsg OP INPUT… -o OUT`.
 fn combine(op: &str, inputs: &[&Path], out: &Path) -> Run {
     let mut args = vec![OsStr::new(op)];
@@ -99,6 +98,7 @@ fn combine(op: &str, inputs: &[&Path], out: &Path) -> Run {
     bspcsg(args)
 }
 
+/// `bspcsg info --json PATH`, parsed.
 fn info(path: &Path) -> Value {
     let run = bspcsg([OsStr::new("info"), path.as_os_str(), OsStr::new("--json")]).ok();
     serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("{e}: {}", run.stdout))

@@ -78,9 +78,12 @@ proptest! {
             offset in prop::array::uniform3(-5.0f64..5.0)) {
         let before = (&a - &b).volume();
         let move_ = |s: &Solid| rigid(s.clone(), axis, angle, offset);
-        let after = (&move_(&a) - &move_(&b)).volume();
+        let moved = &move_(&a) - &move_(&b);
+        let after = moved.volume();
         prop_assert!(close(before, after, a.volume().max(b.volume())),
             "before {before}, after {after}");
+        let report = moved.to_mesh().report();
+        prop_assert!(report.is_closed_manifold(), "{report}");
     }
 
     #[test]
@@ -107,7 +110,11 @@ fn same_answer_at_every_scale() {
             .unwrap()
             .translate(DVec3::new(0.5 * k, 0.25 * k, 0.0))
             .unwrap();
-        [(&a | &b), (&a & &b), (&a - &b)].map(|s| (s.volume() / (k * k * k), s.area() / (k * k)))
+        [(&a | &b), (&a & &b), (&a - &b)].map(|s| {
+            let report = s.to_mesh().report();
+            assert!(report.is_closed_manifold(), "scale {k}: {report}");
+            (s.volume() / (k * k * k), s.area() / (k * k))
+        })
     };
     let unit = build(1.0);
     for k in [1e-6, 1e6] {
