@@ -82,7 +82,8 @@ pub use polygon::{Polygon, Split};
 pub use primitives::{MAX_POLYGONS, MAX_SEGMENTS, MIN_SEGMENTS, segments_for_tolerance};
 pub use sdf::{
     BakeOptions, FALLBACK_COLOR, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL,
-    MAX_POLYGON_POINTS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene, TessellationOptions,
+    MAX_POLYGON_POINTS, MAX_REFINE_STEPS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene,
+    TessellationOptions,
 };
 pub use solid::{Containment, PointClassifier, Solid};
 

@@ -256,8 +256,11 @@ fn lex_less(a: DVec3, b: DVec3) -> bool {
     (a.x, a.y, a.z) < (b.x, b.y, b.z)
 }
 
-/// Drops vertices equal to their predecessor (cyclically).
-fn dedup_ring(v: &mut Vertices) {
+/// Drops entries equal to their predecessor (cyclically).
+pub(crate) fn dedup_ring<A: smallvec::Array>(v: &mut SmallVec<A>)
+where
+    A::Item: PartialEq,
+{
     v.dedup();
     while v.len() > 1 && v.first() == v.last() {
         v.pop();

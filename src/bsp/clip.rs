@@ -121,9 +121,10 @@ impl Tree {
                 continue;
             }
             let is_face = matches!(node.kind, Kind::Face { .. });
-            let split = w.polygon.split(&node.plane, eps);
+            // A cell plane is axis-aligned: the fragment's box tells whether it spans the plane,
+            // and a spanning fragment with no surface near is classified whole, uncut.
             if !is_face
-                && matches!(split, Split::Spanning { .. })
+                && spans_axis_plane(&w.bbox, &node.plane, eps)
                 && !self.near_surface(w.link, &w.bbox, margin)
             {
                 // Only the cell's box came near: classify whole rather than cut for nothing.
@@ -135,7 +136,7 @@ impl Tree {
                 }
                 continue;
             }
-            match split {
+            match w.polygon.split(&node.plane, eps) {
                 Split::Front => stack.push(Work {
                     link: node.front,
                     ..w
@@ -189,4 +190,11 @@ impl Tree {
         self.locate(w.link, c)
             .unwrap_or_else(|| surface.label(c + w.side * (2.0 * self.eps)))
     }
+}
+
+/// True when a box reaches more than `eps` to both sides of an axis-aligned plane.
+fn spans_axis_plane(bbox: &Aabb, plane: &crate::geom::Plane, eps: f64) -> bool {
+    let axis = plane.normal.abs().max_position();
+    let at = plane.anchor[axis];
+    bbox.min[axis] < at - eps && bbox.max[axis] > at + eps
 }

@@ -103,7 +103,7 @@ impl Tree {
 
     /// True when a polygon stored at or below `link` has a box within `margin` of `bbox`.
     pub fn near_surface(&self, link: Link, bbox: &Aabb, margin: f64) -> bool {
-        let mut stack = vec![link];
+        let mut stack: smallvec::SmallVec<[Link; 32]> = smallvec::smallvec![link];
         while let Some(link) = stack.pop() {
             let Link::Node(i) = link else { continue };
             let node = &self.nodes[i as usize];
@@ -127,7 +127,7 @@ impl Tree {
         false
     }
 
-    /// The polygons stored at face node `i`.
+    /// The polygons stored at a face node (none for other nodes).
     pub fn face_polygons(&self, node: &Node) -> &[Polygon] {
         match node.kind {
             Kind::Face { start, end } => &self.polygons[start as usize..end as usize],

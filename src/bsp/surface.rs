@@ -6,6 +6,7 @@ use glam::DVec3;
 use super::Label;
 use crate::geom::Aabb;
 use crate::geom::bvh::Bvh;
+use crate::geom::solid_angle;
 use crate::polygon::Polygon;
 
 /// Ray directions for parity counting, away from any axis or diagonal so that rays rarely
@@ -129,14 +130,6 @@ fn crossing(poly: &Polygon, origin: DVec3, dir: DVec3, eps: f64) -> Crossing {
     } else {
         Crossing::Graze
     }
-}
-
-/// The signed solid angle of triangle `abc` seen from the origin (Van Oosterom–Strackee).
-fn solid_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
-    let (la, lb, lc) = (a.length(), b.length(), c.length());
-    let num = a.dot(b.cross(c));
-    let den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
-    2.0 * num.atan2(den)
 }
 
 #[cfg(test)]

@@ -51,7 +51,7 @@ pub(crate) fn triangulate_boundary(
     if !(reach.is_finite() && reach > 0.0) {
         return None;
     }
-    let scale = 2f64.powi(-reach.log2().ceil() as i32);
+    let scale = crate::geom::unit_scale(reach);
     let vertices: Vec<Point2<f64>> = pts2
         .iter()
         .map(|p| {

@@ -16,6 +16,7 @@ use crate::disjoint_sets::DisjointSets;
 use crate::error::{Error, Result};
 use crate::geom::Aabb;
 use crate::geom::MAX_COORDINATE;
+use crate::geom::solid_angle;
 
 /// What [`Mesh::report`] finds in an indexed triangle mesh: counts, defects, shells, genus and
 /// orientation.
@@ -399,16 +400,6 @@ fn find_cavities(
     }
 }
 
-/// The signed solid angle of triangle `abc` seen from the origin (Van Oosterom and Strackee):
-/// positive when the triangle winds counter-clockwise seen from the origin's far side, so a
-/// closed outward shell sums to 4π at a point inside it.
-fn solid_angle(a: DVec3, b: DVec3, c: DVec3) -> f64 {
-    let (la, lb, lc) = (a.length(), b.length(), c.length());
-    let det = a.dot(b.cross(c));
-    let denom = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
-    2.0 * det.atan2(denom)
-}
-
 /// The corner (0, 1, 2) of `tri` holding vertex `v`.
 fn corner_of(tri: &[u32; 3], v: u32) -> Option<usize> {
     tri.iter().position(|&i| i == v)
@@ -429,7 +420,7 @@ pub(crate) fn is_zero_area([a, b, c]: [DVec3; 3]) -> bool {
     if reach == 0.0 {
         return true;
     }
-    let s = 2f64.powi(-reach.log2().ceil() as i32);
+    let s = crate::geom::unit_scale(reach);
     let (a, b, c) = (a * s, b * s, c * s);
     // Cross the two shorter edges, at the corner opposite the longest: differences taken at a
     // far corner would round the near corners together.
@@ -526,9 +517,7 @@ pub(crate) fn check_finite(positions: &[DVec3], used: impl Fn(usize) -> bool) ->
         Some(first) => Err(Error::InvalidMesh(format!(
             "vertices beyond the supported range of ±{MAX_COORDINATE:e}: {count} (first: vertex \
              {first} = [{:e}, {:e}, {:e}]); scale the mesh down",
-            positions[first].x,
-            positions[first].y,
-            positions[first].z
+            positions[first].x, positions[first].y, positions[first].z
         ))),
         None => Ok(()),
     }

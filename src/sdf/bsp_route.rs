@@ -10,6 +10,7 @@ use super::marching_cubes::{BakeOptions, Grid, march};
 use super::scene::Scene;
 use super::shapes::{Shape, Shape2};
 use super::tree::{BoolKind, Frame, NodeId, NodeKind};
+use crate::boolean::BoolOp;
 use crate::error::{Error, Result};
 use crate::geom::Aabb;
 use crate::polygon::Polygon;
@@ -220,20 +221,12 @@ impl Ctx<'_> {
 }
 
 fn combine(op: BoolKind, children: Vec<Solid>) -> Solid {
-    match op {
-        BoolKind::Union => Solid::union_all(children),
-        BoolKind::Intersect => Solid::intersection_all(children),
-        BoolKind::Subtract => {
-            let mut it = children.into_iter();
-            let first = it.next().unwrap_or_default();
-            let rest: Vec<Solid> = it.collect();
-            if rest.is_empty() {
-                first
-            } else {
-                first - Solid::union_all(rest)
-            }
-        }
-    }
+    let op = match op {
+        BoolKind::Union => BoolOp::Union,
+        BoolKind::Intersect => BoolOp::Intersection,
+        BoolKind::Subtract => BoolOp::Difference,
+    };
+    crate::boolean::boolean_all(op, children)
 }
 
 /// A counter-clockwise polygon extruded over `|z| ≤ h`.

@@ -37,7 +37,8 @@ pub struct BakeOptions {
     /// The region to mesh. `None`: the scene's conservative bounds plus one cell on every side.
     /// A surface cut by these bounds is closed by a cap on them.
     pub bounds: Option<Aabb>,
-    /// Steps of root refinement (Illinois regula falsi) per vertex after the linear guess.
+    /// Steps of root refinement (Illinois regula falsi) per vertex after the linear guess, at
+    /// most [`MAX_REFINE_STEPS`] (it converges in a handful).
     pub refine_steps: u32,
 }
 
@@ -100,6 +101,13 @@ pub(crate) struct Grid {
 impl Grid {
     /// The grid for a bound and options.
     pub(crate) fn new(solid_box: &Aabb, opts: &BakeOptions) -> Result<Option<Grid>> {
+        if opts.refine_steps > MAX_REFINE_STEPS {
+            return Err(Error::param(
+                "refine_steps",
+                opts.refine_steps as f64,
+                "must be at most 64",
+            ));
+        }
         let (region, pad) = match opts.bounds {
             Some(b) => {
                 if !(b.min.is_finite() && b.max.is_finite()) || b.is_empty() {
@@ -271,6 +279,9 @@ struct Work {
     fprobe: Vec<f64>,
     centres: Vec<(u32, [u32; 12], u8)>,
 }
+
+/// The most root-refinement steps a bake accepts.
+pub const MAX_REFINE_STEPS: u32 = 64;
 
 /// The most triangles one bake may make (about 2 GB of mesh). Cells bound the grid's volume,
 /// not its surface: a flat surface across a fine grid would otherwise exhaust memory.

@@ -19,7 +19,9 @@ mod tree;
 use rayon::prelude::*;
 
 pub use bsp_route::TessellationOptions;
-pub use marching_cubes::{BakeOptions, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL};
+pub use marching_cubes::{
+    BakeOptions, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL, MAX_REFINE_STEPS,
+};
 pub use scene::{FALLBACK_COLOR, MAX_POLYGON_POINTS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene};
 
 use crate::error::Result;

@@ -317,6 +317,21 @@ fn required<'a>(
 /// or `{"base_color": …}`.
 fn colour(v: &Value, path: &str) -> Result<[f64; 4]> {
     match v {
+        // A material object holds a plain colour, not another material.
+        Value::Object(m) => {
+            only(m, path, &["base_color", "name"], "a material")?;
+            plain_colour(
+                required(m, path, "base_color", "the material's colour")?,
+                &key_path(path, "base_color"),
+            )
+        }
+        _ => plain_colour(v, path),
+    }
+}
+
+/// A colour as `[r, g, b(, a)]` or `"#rrggbb(aa)"`.
+fn plain_colour(v: &Value, path: &str) -> Result<[f64; 4]> {
+    match v {
         Value::Array(a) => {
             if !(a.len() == 3 || a.len() == 4) {
                 return Err(fault(
@@ -361,13 +376,6 @@ fn colour(v: &Value, path: &str) -> Result<[f64; 4]> {
                 };
             }
             Ok(c)
-        }
-        Value::Object(m) => {
-            only(m, path, &["base_color", "name"], "a material")?;
-            colour(
-                required(m, path, "base_color", "the material's colour")?,
-                &key_path(path, "base_color"),
-            )
         }
         _ => Err(fault(
             path,

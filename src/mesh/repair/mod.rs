@@ -28,7 +28,7 @@ use smallvec::SmallVec;
 
 use super::Mesh;
 use super::weld::{Wide, weld_within};
-use crate::polygon::Polygon;
+use crate::polygon::{Polygon, dedup_ring};
 
 /// Positions closer than this many plane tolerances are one vertex; a vertex this close to an
 /// edge lies on it.
@@ -98,10 +98,7 @@ fn repair(polygons: &[Polygon], delta: f64, wide: &Wide, quick: bool) -> (Mesh, 
         let n = p.vertices().len();
         let mut verts: SmallVec<[u32; 8]> = map[at..at + n].iter().copied().collect();
         at += n;
-        verts.dedup();
-        while verts.len() > 1 && verts.first() == verts.last() {
-            verts.pop();
-        }
+        dedup_ring(&mut verts);
         if verts.len() >= 3 && spans_area(&positions, &verts, p, delta) {
             rings.push(Ring {
                 verts,
