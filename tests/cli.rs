@@ -210,14 +210,8 @@ fn booleans_read_and_write_every_format() {
     ];
     for (op, fa, fb, fo, volume) in cases {
         let out = dir.path(&format!("{op}-{fa}-{fb}.{fo}"));
-        let run = bspcsg([
-            OsStr::new(op),
-            dir.path(&format!("a.{fa}")).as_os_str(),
-            dir.path(&format!("b.{fb}")).as_os_str(),
-            OsStr::new("-o"),
-            out.as_os_str(),
-        ])
-        .ok();
+        let (a, b) = (dir.path(&format!("a.{fa}")), dir.path(&format!("b.{fb}")));
+        let run = combine(op, &[&a, &b], &out).ok();
         // Not a terminal: no spinner, just the summary line.
         assert!(run.stderr.starts_with("wrote "), "{}", run.stderr);
         let v = info(&out);
@@ -325,11 +319,9 @@ fn each_input_keeps_its_source_id() {
         .iter()
         .map(|&(name, x)| write(&dir.path(&format!("{name}.stl")), &cube_at(x).to_mesh()))
         .collect();
+    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     let run = |op: &str, out: &Path| {
-        let mut args = vec![OsStr::new(op)];
-        args.extend(inputs.iter().map(|p| p.as_os_str()));
-        args.extend([OsStr::new("-o"), out.as_os_str()]);
-        bspcsg(args).ok();
+        combine(op, &inputs, out).ok();
     };
     let gltf = dir.path("u.gltf");
     run("union", &gltf);
@@ -434,14 +426,7 @@ fn real_meshes_combine_closed() {
     ];
     for (op, a, b, out, volume_a) in cases {
         let out = dir.path(out);
-        bspcsg([
-            OsStr::new(op),
-            a.as_os_str(),
-            b.as_os_str(),
-            OsStr::new("-o"),
-            out.as_os_str(),
-        ])
-        .ok();
+        combine(op, &[a, b], &out).ok();
         let v = info(&out);
         assert_solid(&v, op);
         let vol = num(&v, "volume");
@@ -476,14 +461,7 @@ fn real_open_and_non_manifold_meshes_are_refused() {
         let probe = write(&dir.path("probe.obj"), &probe.to_mesh());
         let out = dir.path("out.glb");
         for op in ["union", "difference"] {
-            let r = bspcsg([
-                OsStr::new(op),
-                bad.as_os_str(),
-                probe.as_os_str(),
-                OsStr::new("-o"),
-                out.as_os_str(),
-            ])
-            .code(2);
+            let r = combine(op, &[&bad, &probe], &out).code(2);
             assert!(
                 r.stderr.contains(name) && r.stderr.contains(counts),
                 "{}",
@@ -1109,14 +1087,7 @@ fn real_mesh_op_itself_is_exact() {
         let a = models.join(name);
         let volume = num(&info(&a), "volume");
         for op in ["union", "intersection", "difference"] {
-            bspcsg([
-                OsStr::new(op),
-                a.as_os_str(),
-                a.as_os_str(),
-                OsStr::new("-o"),
-                out.as_os_str(),
-            ])
-            .ok();
+            combine(op, &[&a, &a], &out).ok();
             let text = fs::read_to_string(&out).unwrap();
             if op == "difference" {
                 assert!(!text.contains("\nf "), "{name} − itself is not empty");
