@@ -2,6 +2,8 @@
 //! the shared real meshes (closed ones combined, open and non-manifold ones refused), bad files,
 //! unwritable outputs, usage errors and exit codes, and scene export by both routes.
 
+mod common;
+
 use std::ffi::OsStr;
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -9,6 +11,7 @@ use std::process::Command;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use bspcsg::{Format, Mesh, Solid, read_mesh, read_mesh_as, write_mesh};
+use common::models;
 use glam::DVec3;
 use serde_json::Value;
 
@@ -365,17 +368,6 @@ fn each_input_keeps_its_source_id() {
     let r = bspcsg(args).ok();
     assert!(r.stderr.contains("the result is empty"), "{}", r.stderr);
     assert!(inter.exists());
-}
-
-/// The shared real meshes, if `BSPCSG_MODELS` names their folder.
-fn models() -> Option<PathBuf> {
-    match std::env::var_os("BSPCSG_MODELS") {
-        Some(d) => Some(PathBuf::from(d)),
-        None => {
-            eprintln!("skipped: set BSPCSG_MODELS to the shared test-model folder");
-            None
-        }
-    }
 }
 
 /// A copy of a mesh file moved by `offset`, written to `to`.

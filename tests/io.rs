@@ -1,5 +1,7 @@
 //! Mesh file reading and writing: round trips, hand-written files, bad input, real meshes.
 
+mod common;
+
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::fs;
@@ -9,6 +11,7 @@ use base64::Engine as _;
 use bspcsg::{
     Error, Format, Material, Mesh, Solid, read_mesh, read_mesh_as, write_mesh, write_mesh_as,
 };
+use common::models;
 use glam::DVec3;
 
 /// A fresh, empty directory for one test.
@@ -597,17 +600,6 @@ fn failed_writes_leave_nothing_behind() {
         mesh.triangle_count()
     );
     assert_eq!(files_in(&dir), ["keep.glb", "taken.obj"]);
-}
-
-/// The shared real meshes, if `BSPCSG_MODELS` names their folder.
-fn models() -> Option<PathBuf> {
-    match std::env::var_os("BSPCSG_MODELS") {
-        Some(d) => Some(PathBuf::from(d)),
-        None => {
-            eprintln!("skipped: set BSPCSG_MODELS to the shared test-model folder");
-            None
-        }
-    }
 }
 
 #[test]

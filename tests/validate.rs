@@ -1,10 +1,12 @@
 //! Mesh validation reports and mesh input, on built meshes and on the shared real-world models.
 
+mod common;
+
 use std::collections::HashMap;
-use std::path::PathBuf;
 
 use approx::assert_relative_eq;
 use bspcsg::{Error, FromMeshOptions, Mesh, MeshReport, Solid};
+use common::models;
 use glam::DVec3;
 
 fn cube_mesh() -> Mesh {
@@ -430,17 +432,6 @@ fn polyhedron_shares_the_checks() {
 }
 
 // ---- The shared real-world models (see their README.md) ----
-
-/// The models folder, or `None` (with a note) when `BSPCSG_MODELS` is not set.
-fn models() -> Option<PathBuf> {
-    match std::env::var_os("BSPCSG_MODELS") {
-        Some(dir) => Some(PathBuf::from(dir)),
-        None => {
-            eprintln!("skipped: set BSPCSG_MODELS to the shared models folder to run this test");
-            None
-        }
-    }
-}
 
 /// A test-only OBJ reader: `v x y z` positions and `f a/b/c …` faces (1-based or negative
 /// indices, texture and normal indices ignored), fan-triangulated, positions welded bit for bit.

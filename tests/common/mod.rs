@@ -1,8 +1,22 @@
-//! Shared test checks on meshes, through the crate's own `Mesh::report`.
+//! Shared test checks on meshes, through the crate's own `Mesh::report`, and the way tests
+//! find the shared real meshes.
 
 #![allow(dead_code)]
 
+use std::path::PathBuf;
+
 use bspcsg::{Mesh, MeshReport, Solid};
+
+/// The shared real meshes, if `BSPCSG_MODELS` names their folder; `None`, with a note, if not.
+pub fn models() -> Option<PathBuf> {
+    match std::env::var_os("BSPCSG_MODELS") {
+        Some(d) => Some(PathBuf::from(d)),
+        None => {
+            eprintln!("skipped: set BSPCSG_MODELS to the shared test-model folder");
+            None
+        }
+    }
+}
 
 /// Asserts that `mesh` is a closed 2-manifold (closed, manifold edges and vertices, oriented,
 /// no zero-area triangles, shells outward) and returns its report.
