@@ -19,7 +19,8 @@ use super::{
     DEFAULT_MATERIAL_COLOR, DEFAULT_MATERIAL_NAME, Files, OutFile, generator, parse_error,
 };
 use crate::error::{Error, Result};
-use crate::mesh::weld::{FxHashMap, Welder};
+use crate::hash::FxHashMap;
+use crate::mesh::weld::Welder;
 use crate::mesh::{Material, Mesh};
 
 const GLB_MAGIC: &[u8; 4] = b"glTF";

@@ -1,14 +1,14 @@
-//! Meshes in: [`Solid::from_mesh`] turns an indexed triangle mesh into a solid, after checking
-//! that it bounds one.
+//! Meshes in: the checks an indexed triangle mesh must pass to bound a solid, and its triangles
+//! merged into the convex polygons `Solid::from_mesh` is made of.
 
 use super::Mesh;
-use super::validate::{check_closed, check_face_indices, check_finite, is_zero_area};
-use super::weld::{FxBuild, FxHashMap};
 use crate::error::{Error, Result};
+use crate::geom::is_zero_area;
+use crate::hash::{FxBuild, FxHashMap};
 use crate::polygon::{Polygon, Vertices};
-use crate::solid::Solid;
+use crate::topology::{check_closed, check_face_indices, check_finite};
 
-/// How [`Solid::from_mesh_with`] treats its input. The default is strict; see
+/// How [`Solid::from_mesh_with`](crate::Solid::from_mesh_with) treats its input. The default is strict; see
 /// [`FromMeshOptions::lenient`] for input that is known to be imperfect.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FromMeshOptions {
@@ -62,96 +62,58 @@ impl FromMeshOptions {
     }
 }
 
-impl Solid {
-    /// A solid bounded by an indexed triangle mesh, checked: see [`Solid::from_mesh_with`]
-    /// with the default (strict) options.
-    ///
-    /// ```
-    /// use bspcsg::Solid;
-    /// let mesh = Solid::cube(1.0)?.to_mesh();
-    /// let again = Solid::from_mesh(&mesh)?;
-    /// assert!((again.volume() - 1.0).abs() < 1e-12);
-    ///
-    /// let mut open = mesh.clone();
-    /// open.triangles.pop();
-    /// open.sources.pop();
-    /// let err = Solid::from_mesh(&open).unwrap_err();
-    /// assert!(err.to_string().contains("not closed: 3 boundary edges"));
-    /// # Ok::<(), bspcsg::Error>(())
-    /// ```
-    pub fn from_mesh(mesh: &Mesh) -> Result<Solid> {
-        Solid::from_mesh_with(mesh, &FromMeshOptions::default())
+/// The polygons of a solid bounded by `mesh`, after the checks [`FromMeshOptions`] asks for
+/// (the rules are documented on `Solid::from_mesh_with`).
+pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Result<Vec<Polygon>> {
+    if mesh.sources.len() != mesh.triangles.len() {
+        return Err(Error::InvalidMesh(format!(
+            "{} source ids for {} triangles; there must be one per triangle",
+            mesh.sources.len(),
+            mesh.triangles.len()
+        )));
     }
-
-    /// A solid bounded by an indexed triangle mesh: one polygon per triangle, carrying the
-    /// triangle's source id.
-    ///
-    /// Refused with [`Error::InvalidMesh`], whose message gives the counts, when:
-    /// - `sources` and `triangles` differ in length;
-    /// - a triangle uses a vertex index beyond `positions`;
-    /// - a position used by a triangle has a NaN or infinite coordinate (unused ones are
-    ///   ignored);
-    /// - with [`require_closed`](FromMeshOptions::require_closed) (the default): a triangle
-    ///   repeats an index, the mesh is not closed (edges used by one triangle, by more than
-    ///   two, or by two in the same direction), or it is inside out (a shell winds clockwise
-    ///   seen from outside and is no cavity).
-    ///
-    /// Triangles of zero area (by [`MeshReport::ZERO_AREA_ULPS`](crate::MeshReport::ZERO_AREA_ULPS)) are
-    /// skipped: they bound no area, and the plane of a sliver is noise that would mislead
-    /// the BSP. Their edges still count when closure is checked, so a crack closed by a sliver
-    /// is accepted. The empty mesh gives the empty solid. The input is taken as exact: the
-    /// solid carries no tolerance.
-    pub fn from_mesh_with(mesh: &Mesh, options: &FromMeshOptions) -> Result<Solid> {
-        if mesh.sources.len() != mesh.triangles.len() {
+    check_face_indices(
+        &mesh.triangles,
+        mesh.positions.len(),
+        !options.require_closed,
+    )?;
+    let mut used = vec![false; mesh.positions.len()];
+    for &i in mesh.triangles.iter().flatten() {
+        used[i as usize] = true;
+    }
+    check_finite(&mesh.positions, |i| used[i])?;
+    if options.require_closed {
+        check_closed(&mesh.triangles)?;
+        let report = mesh.report();
+        if report.inverted_shells > 0 {
             return Err(Error::InvalidMesh(format!(
-                "{} source ids for {} triangles; there must be one per triangle",
-                mesh.sources.len(),
-                mesh.triangles.len()
+                "inside out: {} of {} shells enclose no positive volume and are not \
+                 cavities (faces must wind counter-clockwise seen from outside)",
+                report.inverted_shells,
+                report.shells.len()
             )));
         }
-        check_face_indices(
-            &mesh.triangles,
-            mesh.positions.len(),
-            !options.require_closed,
-        )?;
-        let mut used = vec![false; mesh.positions.len()];
-        for &i in mesh.triangles.iter().flatten() {
-            used[i as usize] = true;
-        }
-        check_finite(&mesh.positions, |i| used[i])?;
-        if options.require_closed {
-            check_closed(&mesh.triangles)?;
-            let report = mesh.report();
-            if report.inverted_shells > 0 {
-                return Err(Error::InvalidMesh(format!(
-                    "inside out: {} of {} shells enclose no positive volume and are not \
-                     cavities (faces must wind counter-clockwise seen from outside)",
-                    report.inverted_shells,
-                    report.shells.len()
-                )));
-            }
-        }
-        // One polygon per triangle of non-zero area. Repeated indices were refused or have
-        // zero area, so Polygon::new only fails where Newell's method finds no plane at all.
-        let triangles: Vec<Option<Polygon>> = mesh
-            .triangles
-            .iter()
-            .zip(&mesh.sources)
-            .map(|(tri, &source)| {
-                let corners = tri.map(|i| mesh.positions[i as usize]);
-                if is_zero_area(corners) {
-                    return None;
-                }
-                Polygon::new(corners.as_slice(), source)
-            })
-            .collect();
-        let polygons = if options.merge_coplanar {
-            merge_coplanar(mesh, &triangles)
-        } else {
-            triangles.into_iter().flatten().collect()
-        };
-        Ok(Solid::from_polygons(polygons))
     }
+    // One polygon per triangle of non-zero area. Repeated indices were refused or have
+    // zero area, so Polygon::new only fails where Newell's method finds no plane at all.
+    let triangles: Vec<Option<Polygon>> = mesh
+        .triangles
+        .iter()
+        .zip(&mesh.sources)
+        .map(|(tri, &source)| {
+            let corners = tri.map(|i| mesh.positions[i as usize]);
+            if is_zero_area(corners) {
+                return None;
+            }
+            Polygon::new(corners.as_slice(), source)
+        })
+        .collect();
+    let polygons = if options.merge_coplanar {
+        merge_coplanar(mesh, &triangles)
+    } else {
+        triangles.into_iter().flatten().collect()
+    };
+    Ok(polygons)
 }
 
 /// A corner of a merged polygon turns left by more than this sine of its angle: strictly convex

@@ -23,8 +23,8 @@ use super::eval::{Program, Scratch};
 use super::mc_table::{TABLE, edge_corners, face_corners};
 use crate::error::{Error, Result};
 use crate::geom::Aabb;
+use crate::hash::FxHashMap;
 use crate::mesh::Mesh;
-use crate::mesh::weld::FxHashMap;
 
 /// How to bake a scene into a mesh by marching cubes.
 #[derive(Clone, Debug, PartialEq)]

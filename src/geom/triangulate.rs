@@ -6,7 +6,7 @@ use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
 use smallvec::SmallVec;
 
-use super::weld::FxHashMap;
+use crate::hash::FxHashMap;
 
 /// Triangulates the region of a plane lying to the left of its directed boundary `edges`
 /// (counter-clockwise outer loops, clockwise holes, seen from the front of `normal`), using only
@@ -158,7 +158,7 @@ fn ear_clip_loop(
     // Ear clipping decides on the projection; refuse any triangle flat in 3D.
     if tris
         .iter()
-        .any(|t| crate::mesh::validate::is_zero_area(t.map(|k| pts[k])))
+        .any(|t| crate::geom::is_zero_area(t.map(|k| pts[k])))
     {
         return None;
     }
