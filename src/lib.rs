@@ -59,11 +59,11 @@
 
 #![warn(missing_docs)]
 
-mod boolean;
 mod bsp;
 mod disjoint_sets;
 mod error;
 mod geom;
+mod hash;
 mod io;
 mod mesh;
 mod polygon;
@@ -71,9 +71,9 @@ mod primitives;
 pub mod raymarch;
 mod sdf;
 mod solid;
+mod topology;
 
-pub use boolean::{BoolOp, boolean, boolean_all};
-pub use error::{Error, Result};
+pub use error::{Error, MeshDefect, Result};
 pub use geom::{Aabb, MAX_COORDINATE, Plane, Side, Tolerance};
 pub use io::{
     Format, ParseFormatError, read_mesh, read_mesh_as, read_solid, write_mesh, write_mesh_as,
@@ -86,7 +86,7 @@ pub use sdf::{
     MAX_POLYGON_POINTS, MAX_REFINE_STEPS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene,
     TessellationOptions,
 };
-pub use solid::{Containment, PointClassifier, Solid};
+pub use solid::{BoolOp, Containment, PointClassifier, Solid, boolean, boolean_all};
 
 pub use glam;
 

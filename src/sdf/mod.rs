@@ -12,7 +12,6 @@ mod bsp_route;
 mod cull;
 mod eval;
 mod marching_cubes;
-mod mc_table;
 mod scene;
 mod shapes;
 mod tree;
