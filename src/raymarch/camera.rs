@@ -129,12 +129,12 @@ impl Camera {
             ));
         }
         if !(bounds.min.is_finite() && bounds.max.is_finite()) {
-            return Err(Error::param(
-                "bounds",
-                f64::INFINITY,
-                "the scene is unbounded (a half-space not intersected away): give a camera \
-                 (`camera` in the scene, or --eye and --target)",
-            ));
+            return Err(Error::Unbounded {
+                what: "the scene",
+                why: "a half-space not intersected with a bounded shape",
+                remedy: "the default camera cannot frame it: give a camera (`camera` in the \
+                         scene, or --eye and --target)",
+            });
         }
         check_size(size)?;
         let c = bounds.center();

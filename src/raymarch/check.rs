@@ -20,7 +20,7 @@ use super::camera::{Camera, View};
 use super::image::{Rgb8, encode_srgb};
 use super::march::SceneTracer;
 use super::render::{RenderOptions, TILE, Tile};
-use crate::error::{Error, Result};
+use crate::error::{Error, MeshDefect, Result};
 use crate::geom::Aabb;
 use crate::mesh::Mesh;
 use crate::sdf::Scene;
@@ -197,18 +197,24 @@ impl Rng {
 /// disagrees is a report with failures, not an error.
 pub fn check_mesh(scene: &Scene, mesh: &Mesh, opts: &CheckOptions) -> Result<CheckReport> {
     let bounds = scene.bounds();
-    if bounds.is_empty() || !(bounds.min.is_finite() && bounds.max.is_finite()) {
+    if bounds.is_empty() {
         return Err(Error::param(
             "scene",
-            bounds.diagonal(),
-            "only a bounded, non-empty scene can be checked",
+            0.0,
+            "the scene is empty: there is no surface to check against",
         ));
+    }
+    if !(bounds.min.is_finite() && bounds.max.is_finite()) {
+        return Err(Error::Unbounded {
+            what: "the scene",
+            why: "a half-space not intersected with a bounded shape",
+            remedy: "only a bounded scene can be checked; intersect the half-space with a \
+                     bounded shape",
+        });
     }
     let bvh = MeshBvh::build(mesh);
     if bvh.triangle_count() == 0 {
-        return Err(Error::InvalidMesh(
-            "the mesh has no valid triangles to check".into(),
-        ));
+        return Err(Error::mesh(MeshDefect::NoFaces));
     }
     let diagonal = bounds.diagonal();
     let tol = opts.tolerance.unwrap_or(diagonal / 250.0);
