@@ -69,6 +69,7 @@ mod mesh;
 mod polygon;
 mod primitives;
 mod sdf;
+mod sketch;
 mod solid;
 
 pub use boolean::{BoolOp, boolean, boolean_all};
@@ -85,6 +86,7 @@ pub use sdf::{
     MAX_POLYGON_POINTS, MAX_REFINE_STEPS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene,
     TessellationOptions,
 };
+pub use sketch::{ExtrudeOptions, FillRule, Region, Sketch, SketchReport, TWIST_DEGREES_PER_SLICE};
 pub use solid::{Containment, PointClassifier, Solid};
 
 pub use glam;
