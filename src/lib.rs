@@ -59,11 +59,11 @@
 
 #![warn(missing_docs)]
 
-mod boolean;
 mod bsp;
 mod disjoint_sets;
 mod error;
 mod geom;
+mod hash;
 mod io;
 mod mesh;
 mod polygon;
@@ -71,8 +71,8 @@ mod primitives;
 mod sdf;
 mod sketch;
 mod solid;
+mod topology;
 
-pub use boolean::{BoolOp, boolean, boolean_all};
 pub use error::{Error, Result};
 pub use geom::{Aabb, MAX_COORDINATE, Plane, Side, Tolerance};
 pub use io::{
@@ -87,7 +87,7 @@ pub use sdf::{
     TessellationOptions,
 };
 pub use sketch::{ExtrudeOptions, FillRule, Region, Sketch, SketchReport, TWIST_DEGREES_PER_SLICE};
-pub use solid::{Containment, PointClassifier, Solid};
+pub use solid::{BoolOp, Containment, PointClassifier, Solid, boolean, boolean_all};
 
 pub use glam;
 

@@ -1,12 +1,17 @@
-//! Basic geometry: boxes, planes and the tolerance that classifies points against planes.
+//! Basic geometry: boxes, planes, the tolerance that classifies points against planes, rotations,
+//! planar triangulation and the geometric predicates everything above shares. Imports nothing
+//! from the rest of the crate.
 
 mod aabb;
 pub(crate) mod bvh;
 mod plane;
+mod rotation;
 mod tolerance;
+pub(crate) mod triangulate;
 
 pub use aabb::Aabb;
 pub use plane::{Plane, Side};
+pub(crate) use rotation::euler_degrees;
 pub use tolerance::Tolerance;
 
 /// The largest coordinate magnitude the kernel accepts. Volumes multiply three coordinates,
@@ -27,4 +32,70 @@ pub(crate) fn solid_angle(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> f64
     let num = a.dot(b.cross(c));
     let den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
     2.0 * num.atan2(den)
+}
+
+/// A triangle is degenerate when twice its area is at most this many units of rounding:
+/// `ε · Σ |corner| · |opposite edge|` (see [`is_zero_area`]).
+pub(crate) const ZERO_AREA_ULPS: f64 = 32.0;
+
+/// True when twice the triangle's area is at most [`ZERO_AREA_ULPS`] units of the
+/// rounding its corners carry. Coordinates are first scaled by a power of two (exact) so that
+/// nothing overflows or underflows.
+pub(crate) fn is_zero_area([a, b, c]: [glam::DVec3; 3]) -> bool {
+    let reach = a.abs().max(b.abs()).max(c.abs()).max_element();
+    if !reach.is_finite() {
+        return false;
+    }
+    if reach == 0.0 {
+        return true;
+    }
+    let s = unit_scale(reach);
+    let (a, b, c) = (a * s, b * s, c * s);
+    // Cross the two shorter edges, at the corner opposite the longest: differences taken at a
+    // far corner would round the near corners together.
+    let (ab, bc, ca) = (
+        (b - a).length_squared(),
+        (c - b).length_squared(),
+        (a - c).length_squared(),
+    );
+    let twice = if ab >= bc && ab >= ca {
+        (a - c).cross(b - c).length()
+    } else if bc >= ca {
+        (b - a).cross(c - a).length()
+    } else {
+        (c - b).cross(a - b).length()
+    };
+    let rounding = a.length() * (b - c).length()
+        + b.length() * (c - a).length()
+        + c.length() * (a - b).length();
+    twice <= ZERO_AREA_ULPS * f64::EPSILON * rounding
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+
+    #[test]
+    fn zero_area_is_scale_free() {
+        let line = [DVec3::ZERO, DVec3::X, DVec3::X * 2.0];
+        let fat = [DVec3::ZERO, DVec3::X, DVec3::Y];
+        for scale in [1e-200, 1e-6, 1.0, 1e6, 1e200] {
+            assert!(is_zero_area(line.map(|p| p * scale)));
+            assert!(!is_zero_area(fat.map(|p| p * scale)), "{scale}");
+        }
+        // A cap whose apex is off the base by about its own rounding is flat; by 10⁻¹³, not.
+        let cap = |h: f64, at: DVec3| [at, at + DVec3::X, at + DVec3::new(0.5, h, 0.0)];
+        assert!(is_zero_area(cap(1e-15, DVec3::ZERO)));
+        assert!(!is_zero_area(cap(1e-13, DVec3::ZERO)));
+        // A million units from the origin, corners carry 10⁻¹⁰ of rounding.
+        assert!(is_zero_area(cap(1e-11, DVec3::splat(1e6))));
+        assert!(!is_zero_area(cap(1e-7, DVec3::splat(1e6))));
+        // Thin is not flat: a 1-wide base joined to a corner 10³⁸ away has area 10³⁸.
+        let far = [DVec3::ZERO, DVec3::X, DVec3::new(3e38, 3e38, 0.0)];
+        assert!(!is_zero_area(far));
+        assert!(is_zero_area([DVec3::ONE; 3]));
+        assert!(!is_zero_area([DVec3::ZERO, DVec3::X, DVec3::NAN]));
+    }
 }

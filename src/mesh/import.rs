@@ -1,14 +1,14 @@
-//! Meshes in: [`Solid::from_mesh`] turns an indexed triangle mesh into a solid, after checking
-//! that it bounds one.
+//! Meshes in: the checks an indexed triangle mesh must pass to bound a solid, and its triangles
+//! merged into the convex polygons `Solid::from_mesh` is made of.
 
 use super::Mesh;
-use super::validate::{check_closed, check_face_indices, check_finite, is_zero_area};
-use super::weld::{FxBuild, FxHashMap};
 use crate::error::{Error, Result};
+use crate::geom::is_zero_area;
+use crate::hash::{FxBuild, FxHashMap};
 use crate::polygon::{Polygon, Vertices};
-use crate::solid::Solid;
+use crate::topology::{check_closed, check_face_indices, check_finite};
 
-/// How [`Solid::from_mesh_with`] treats its input. The default is strict; see
+/// How [`Solid::from_mesh_with`](crate::Solid::from_mesh_with) treats its input. The default is strict; see
 /// [`FromMeshOptions::lenient`] for input that is known to be imperfect.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FromMeshOptions {
@@ -62,96 +62,58 @@ impl FromMeshOptions {
     }
 }
 
-impl Solid {
-    /// A solid bounded by an indexed triangle mesh, checked: see [`Solid::from_mesh_with`]
-    /// with the default (strict) options.
-    ///
-    /// ```
-    /// use bspcsg::Solid;
-    /// let mesh = Solid::cube(1.0)?.to_mesh();
-    /// let again = Solid::from_mesh(&mesh)?;
-    /// assert!((again.volume() - 1.0).abs() < 1e-12);
-    ///
-    /// let mut open = mesh.clone();
-    /// open.triangles.pop();
-    /// open.sources.pop();
-    /// let err = Solid::from_mesh(&open).unwrap_err();
-    /// assert!(err.to_string().contains("not closed: 3 boundary edges"));
-    /// # Ok::<(), bspcsg::Error>(())
-    /// ```
-    pub fn from_mesh(mesh: &Mesh) -> Result<Solid> {
-        Solid::from_mesh_with(mesh, &FromMeshOptions::default())
+/// The polygons of a solid bounded by `mesh`, after the checks [`FromMeshOptions`] asks for
+/// (the rules are documented on `Solid::from_mesh_with`).
+pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Result<Vec<Polygon>> {
+    if mesh.sources.len() != mesh.triangles.len() {
+        return Err(Error::InvalidMesh(format!(
+            "{} source ids for {} triangles; there must be one per triangle",
+            mesh.sources.len(),
+            mesh.triangles.len()
+        )));
     }
-
-    /// A solid bounded by an indexed triangle mesh: one polygon per triangle, carrying the
-    /// triangle's source id.
-    ///
-    /// Refused with [`Error::InvalidMesh`], whose message gives the counts, when:
-    /// - `sources` and `triangles` differ in length;
-    /// - a triangle uses a vertex index beyond `positions`;
-    /// - a position used by a triangle has a NaN or infinite coordinate (unused ones are
-    ///   ignored);
-    /// - with [`require_closed`](FromMeshOptions::require_closed) (the default): a triangle
-    ///   repeats an index, the mesh is not closed (edges used by one triangle, by more than
-    ///   two, or by two in the same direction), or it is inside out (a shell winds clockwise
-    ///   seen from outside and is no cavity).
-    ///
-    /// Triangles of zero area (by [`MeshReport::ZERO_AREA_ULPS`](crate::MeshReport::ZERO_AREA_ULPS)) are
-    /// skipped: they bound no area, and the plane of a sliver is noise that would mislead
-    /// the BSP. Their edges still count when closure is checked, so a crack closed by a sliver
-    /// is accepted. The empty mesh gives the empty solid. The input is taken as exact: the
-    /// solid carries no tolerance.
-    pub fn from_mesh_with(mesh: &Mesh, options: &FromMeshOptions) -> Result<Solid> {
-        if mesh.sources.len() != mesh.triangles.len() {
+    check_face_indices(
+        &mesh.triangles,
+        mesh.positions.len(),
+        !options.require_closed,
+    )?;
+    let mut used = vec![false; mesh.positions.len()];
+    for &i in mesh.triangles.iter().flatten() {
+        used[i as usize] = true;
+    }
+    check_finite(&mesh.positions, |i| used[i])?;
+    if options.require_closed {
+        check_closed(&mesh.triangles)?;
+        let report = mesh.report();
+        if report.inverted_shells > 0 {
             return Err(Error::InvalidMesh(format!(
-                "{} source ids for {} triangles; there must be one per triangle",
-                mesh.sources.len(),
-                mesh.triangles.len()
+                "inside out: {} of {} shells enclose no positive volume and are not \
+                 cavities (faces must wind counter-clockwise seen from outside)",
+                report.inverted_shells,
+                report.shells.len()
             )));
         }
-        check_face_indices(
-            &mesh.triangles,
-            mesh.positions.len(),
-            !options.require_closed,
-        )?;
-        let mut used = vec![false; mesh.positions.len()];
-        for &i in mesh.triangles.iter().flatten() {
-            used[i as usize] = true;
-        }
-        check_finite(&mesh.positions, |i| used[i])?;
-        if options.require_closed {
-            check_closed(&mesh.triangles)?;
-            let report = mesh.report();
-            if report.inverted_shells > 0 {
-                return Err(Error::InvalidMesh(format!(
-                    "inside out: {} of {} shells enclose no positive volume and are not \
-                     cavities (faces must wind counter-clockwise seen from outside)",
-                    report.inverted_shells,
-                    report.shells.len()
-                )));
-            }
-        }
-        // One polygon per triangle of non-zero area. Repeated indices were refused or have
-        // zero area, so Polygon::new only fails where Newell's method finds no plane at all.
-        let triangles: Vec<Option<Polygon>> = mesh
-            .triangles
-            .iter()
-            .zip(&mesh.sources)
-            .map(|(tri, &source)| {
-                let corners = tri.map(|i| mesh.positions[i as usize]);
-                if is_zero_area(corners) {
-                    return None;
-                }
-                Polygon::new(corners.as_slice(), source)
-            })
-            .collect();
-        let polygons = if options.merge_coplanar {
-            merge_coplanar(mesh, &triangles)
-        } else {
-            triangles.into_iter().flatten().collect()
-        };
-        Ok(Solid::from_polygons(polygons))
     }
+    // One polygon per triangle of non-zero area. Repeated indices were refused or have
+    // zero area, so Polygon::new only fails where Newell's method finds no plane at all.
+    let triangles: Vec<Option<Polygon>> = mesh
+        .triangles
+        .iter()
+        .zip(&mesh.sources)
+        .map(|(tri, &source)| {
+            let corners = tri.map(|i| mesh.positions[i as usize]);
+            if is_zero_area(corners) {
+                return None;
+            }
+            Polygon::new(corners.as_slice(), source)
+        })
+        .collect();
+    let polygons = if options.merge_coplanar {
+        merge_coplanar(mesh, &triangles)
+    } else {
+        triangles.into_iter().flatten().collect()
+    };
+    Ok(polygons)
 }
 
 /// A corner of a merged polygon turns left by more than this sine of its angle: strictly convex
@@ -165,110 +127,150 @@ const STRICTLY_CONVEX: f64 = 1e-12;
 /// The ring is a linked list over vertex indices (`next`, `prev`), and `stamp` marks the
 /// vertices of the current ring, so each polygon costs time linear in its size.
 fn merge_coplanar(mesh: &Mesh, triangles: &[Option<Polygon>]) -> Vec<Polygon> {
-    const MANY: usize = usize::MAX;
-    const UNSET: u32 = u32::MAX;
-    let (tris, pos) = (&mesh.triangles, &mesh.positions);
-    let bbox = mesh.bbox();
-    let tol = (1e-12 * bbox.diagonal()).max(64.0 * f64::EPSILON * bbox.max_abs());
-
-    // Directed edge -> the one triangle that runs along it, or MANY.
-    let mut owner: FxHashMap<(u32, u32), usize> =
-        FxHashMap::with_capacity_and_hasher(3 * tris.len(), FxBuild::default());
-    for (t, tri) in tris
-        .iter()
-        .enumerate()
-        .filter(|(t, _)| triangles[*t].is_some())
-    {
-        for k in 0..3 {
-            owner
-                .entry((tri[k], tri[(k + 1) % 3]))
-                .and_modify(|o| *o = MANY)
-                .or_insert(t);
-        }
-    }
-    // The triangle across directed edge u -> v, if the edge is used once each way.
-    let across = |u: u32, v: u32| -> Option<usize> {
-        match (owner.get(&(u, v)), owner.get(&(v, u))) {
-            (Some(&a), Some(&b)) if a != MANY && b != MANY => Some(b),
-            _ => None,
-        }
-    };
-
-    let mut done = vec![false; tris.len()];
-    let mut next = vec![UNSET; pos.len()];
-    let mut prev = vec![UNSET; pos.len()];
-    let mut stamp = vec![usize::MAX; pos.len()];
-    let mut stack: Vec<u32> = Vec::new();
+    let mut merger = Merger::new(mesh, triangles);
     let mut out = Vec::new();
     for (seed, polygon) in triangles.iter().enumerate() {
         let Some(polygon) = polygon else { continue };
-        if done[seed] {
+        if merger.done[seed] {
             continue;
         }
-        done[seed] = true;
-        let plane = *polygon.plane();
-        let p = |i: u32| pos[i as usize];
-        // Strictly convex at b: a left turn about the normal, beyond rounding.
-        let convex = |a: u32, b: u32, c: u32| {
-            let (e, f) = (p(b) - p(a), p(c) - p(b));
-            e.cross(f).dot(plane.normal) > STRICTLY_CONVEX * e.length() * f.length()
-        };
-        let [a, b, c] = tris[seed];
-        for (u, v) in [(a, b), (b, c), (c, a)] {
-            next[u as usize] = v;
-            prev[v as usize] = u;
-            stamp[u as usize] = seed;
+        merger.done[seed] = true;
+        out.push(merger.grow(seed, polygon));
+    }
+    out
+}
+
+/// An edge used by more than one triangle in the same direction.
+const MANY: usize = usize::MAX;
+const UNSET: u32 = u32::MAX;
+
+/// The state of [`merge_coplanar`]: edge ownership, which triangles are taken, and the ring
+/// being grown as a linked list over vertex indices.
+struct Merger<'a> {
+    tris: &'a [[u32; 3]],
+    pos: &'a [glam::DVec3],
+    triangles: &'a [Option<Polygon>],
+    /// How far off the seed's plane a new corner may lie.
+    tol: f64,
+    /// Directed edge -> the one triangle that runs along it, or [`MANY`].
+    owner: FxHashMap<(u32, u32), usize>,
+    done: Vec<bool>,
+    next: Vec<u32>,
+    prev: Vec<u32>,
+    /// The seed whose ring a vertex is on.
+    stamp: Vec<usize>,
+    stack: Vec<u32>,
+}
+
+impl<'a> Merger<'a> {
+    fn new(mesh: &'a Mesh, triangles: &'a [Option<Polygon>]) -> Self {
+        let (tris, pos) = (&mesh.triangles, &mesh.positions);
+        let bbox = mesh.bbox();
+        let tol = (1e-12 * bbox.diagonal()).max(64.0 * f64::EPSILON * bbox.max_abs());
+        let mut owner: FxHashMap<(u32, u32), usize> =
+            FxHashMap::with_capacity_and_hasher(3 * tris.len(), FxBuild::default());
+        for (t, tri) in tris
+            .iter()
+            .enumerate()
+            .filter(|(t, _)| triangles[*t].is_some())
+        {
+            for k in 0..3 {
+                owner
+                    .entry((tri[k], tri[(k + 1) % 3]))
+                    .and_modify(|o| *o = MANY)
+                    .or_insert(t);
+            }
         }
-        stack.clear();
-        stack.extend([a, b, c]);
+        Merger {
+            tris,
+            pos,
+            triangles,
+            tol,
+            owner,
+            done: vec![false; tris.len()],
+            next: vec![UNSET; pos.len()],
+            prev: vec![UNSET; pos.len()],
+            stamp: vec![usize::MAX; pos.len()],
+            stack: Vec::new(),
+        }
+    }
+
+    /// The triangle across directed edge u -> v, if the edge is used once each way.
+    fn across(&self, u: u32, v: u32) -> Option<usize> {
+        match (self.owner.get(&(u, v)), self.owner.get(&(v, u))) {
+            (Some(&a), Some(&b)) if a != MANY && b != MANY => Some(b),
+            _ => None,
+        }
+    }
+
+    fn p(&self, i: u32) -> glam::DVec3 {
+        self.pos[i as usize]
+    }
+
+    /// Strictly convex at b: a left turn about `normal`, beyond rounding.
+    fn convex(&self, normal: glam::DVec3, a: u32, b: u32, c: u32) -> bool {
+        let (e, f) = (self.p(b) - self.p(a), self.p(c) - self.p(b));
+        e.cross(f).dot(normal) > STRICTLY_CONVEX * e.length() * f.length()
+    }
+
+    /// The convex polygon grown from triangle `seed` (whose polygon is `polygon`).
+    fn grow(&mut self, seed: usize, polygon: &Polygon) -> Polygon {
+        let [a, b, c] = self.tris[seed];
+        for (u, v) in [(a, b), (b, c), (c, a)] {
+            self.next[u as usize] = v;
+            self.prev[v as usize] = u;
+            self.stamp[u as usize] = seed;
+        }
+        self.stack.clear();
+        self.stack.extend([a, b, c]);
         let mut corners = 3;
         // Each entry is the start of a ring edge to try; a merge replaces u -> v by
         // u -> w -> v, and both new edges are tried in turn.
-        while let Some(u) = stack.pop() {
-            let v = next[u as usize];
-            let Some(t) = across(u, v) else { continue };
-            let Some(other) = &triangles[t] else { continue };
-            if done[t] || other.source() != polygon.source() {
-                continue;
+        while let Some(u) = self.stack.pop() {
+            if let Some((t, w)) = self.mergeable(seed, polygon, u) {
+                let v = self.next[u as usize];
+                self.next[u as usize] = w;
+                self.prev[w as usize] = u;
+                self.next[w as usize] = v;
+                self.prev[v as usize] = w;
+                self.stamp[w as usize] = seed;
+                self.done[t] = true;
+                corners += 1;
+                self.stack.extend([u, w]);
             }
-            let tri = tris[t];
-            let Some(&w) = tri.iter().find(|&&i| i != u && i != v) else {
-                continue;
-            };
-            if stamp[w as usize] == seed
-                || other.plane().normal.dot(plane.normal) <= 0.0
-                || plane.distance(p(w)).abs() > tol
-                || !convex(prev[u as usize], u, w)
-                || !convex(u, w, v)
-                || !convex(w, v, next[v as usize])
-            {
-                continue;
-            }
-            next[u as usize] = w;
-            prev[w as usize] = u;
-            next[w as usize] = v;
-            prev[v as usize] = w;
-            stamp[w as usize] = seed;
-            done[t] = true;
-            corners += 1;
-            stack.extend([u, w]);
         }
         if corners == 3 {
-            out.push(polygon.clone());
-            continue;
+            return polygon.clone();
         }
         let mut ring = Vertices::with_capacity(corners);
         let mut i = a;
         for _ in 0..corners {
-            ring.push(p(i));
-            i = next[i as usize];
+            ring.push(self.p(i));
+            i = self.next[i as usize];
         }
         // A strictly convex ring of positive area always has a plane; keep the seed's as a
         // fallback that cannot fail.
-        out.push(
-            Polygon::new(ring.clone(), polygon.source())
-                .unwrap_or_else(|| Polygon::with_plane(ring, plane, polygon.source())),
-        );
+        Polygon::new(ring.clone(), polygon.source())
+            .unwrap_or_else(|| Polygon::with_plane(ring, *polygon.plane(), polygon.source()))
     }
-    out
+
+    /// The triangle across ring edge `u -> next[u]` and its third vertex, when taking it in
+    /// keeps the ring of `seed` strictly convex, in its plane and of one source.
+    fn mergeable(&self, seed: usize, polygon: &Polygon, u: u32) -> Option<(usize, u32)> {
+        let plane = polygon.plane();
+        let v = self.next[u as usize];
+        let t = self.across(u, v)?;
+        let other = self.triangles[t].as_ref()?;
+        if self.done[t] || other.source() != polygon.source() {
+            return None;
+        }
+        let w = *self.tris[t].iter().find(|&&i| i != u && i != v)?;
+        let refused = self.stamp[w as usize] == seed
+            || other.plane().normal.dot(plane.normal) <= 0.0
+            || plane.distance(self.p(w)).abs() > self.tol
+            || !self.convex(plane.normal, self.prev[u as usize], u, w)
+            || !self.convex(plane.normal, u, w, v)
+            || !self.convex(plane.normal, w, v, self.next[v as usize]);
+        (!refused).then_some((t, w))
+    }
 }

@@ -102,11 +102,10 @@ impl Mesh {
     }
 }
 
-mod import;
+pub(crate) mod import;
 pub(crate) mod repair;
-pub(crate) mod triangulate;
-pub(crate) mod validate;
+pub(crate) mod report;
 pub(crate) mod weld;
 
 pub use import::FromMeshOptions;
-pub use validate::{MeshReport, ShellReport};
+pub use report::{MeshReport, ShellReport};

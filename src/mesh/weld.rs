@@ -1,46 +1,9 @@
 //! Bit-exact vertex welding: equal coordinates become one vertex.
 
-use std::collections::HashMap;
-use std::hash::BuildHasherDefault;
-
 use glam::DVec3;
 use smallvec::SmallVec;
 
-use super::Mesh;
-use crate::solid::Solid;
-
-/// A fast hasher for vertex keys (FxHash's multiply-rotate).
-#[derive(Default, Clone, Copy)]
-pub(crate) struct FxHasher(u64);
-
-impl std::hash::Hasher for FxHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(b as u64);
-        }
-    }
-    #[inline]
-    fn write_u64(&mut self, x: u64) {
-        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-}
-
-pub(crate) type FxBuild = BuildHasherDefault<FxHasher>;
-pub(crate) type FxHashMap<K, V> = HashMap<K, V, FxBuild>;
-pub(crate) type FxHashSet<K> = std::collections::HashSet<K, FxBuild>;
-
-/// The key of a position: its bits, with −0 folded onto +0.
-#[inline]
-pub(crate) fn key(p: DVec3) -> [u64; 3] {
-    [
-        (p.x + 0.0).to_bits(),
-        (p.y + 0.0).to_bits(),
-        (p.z + 0.0).to_bits(),
-    ]
-}
+use crate::hash::{FxBuild, FxHashMap, key};
 
 /// Assigns one index per distinct position.
 #[derive(Default)]
@@ -66,40 +29,6 @@ impl Welder {
             self.positions.push(p);
         }
         i
-    }
-}
-
-impl Solid {
-    /// The solid as an indexed triangle mesh that is a closed 2-manifold whenever the solid is
-    /// closed: vertices welded, T-junctions removed, coplanar fragments of one source merged and
-    /// triangulated without zero-area triangles, and solids that touch along an edge or at a
-    /// vertex returned as separate manifold shells. Each triangle carries its polygon's source
-    /// id. See [`Solid::to_mesh_unrepaired`] for the plain fan triangulation.
-    pub fn to_mesh(&self) -> Mesh {
-        super::repair::polygons_to_mesh(self.polygons(), self.tolerance().eps())
-    }
-
-    /// Each polygon fanned into triangles, positions welded bit for bit and nothing else:
-    /// after a boolean this has T-junctions. For inspecting what a boolean produced.
-    pub fn to_mesh_unrepaired(&self) -> Mesh {
-        let mut welder = Welder::with_capacity(self.corner_count() / 2);
-        let mut triangles = Vec::with_capacity(self.corner_count());
-        let mut sources = Vec::with_capacity(self.corner_count());
-        for p in self.polygons() {
-            let idx: Vec<u32> = p.vertices().iter().map(|&v| welder.index(v)).collect();
-            for k in 1..idx.len() - 1 {
-                let t = [idx[0], idx[k], idx[k + 1]];
-                if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
-                    triangles.push(t);
-                    sources.push(p.source());
-                }
-            }
-        }
-        Mesh {
-            positions: welder.positions,
-            triangles,
-            sources,
-        }
     }
 }
 

@@ -1,46 +1,35 @@
+//! The axis-aligned box.
+
 use glam::DVec3;
 
 use super::{face, positive};
 use crate::error::Result;
-use crate::solid::Solid;
+use crate::polygon::Polygon;
 
-impl Solid {
-    /// An axis-aligned box of the given edge lengths, centred at the origin.
-    ///
-    /// ```
-    /// let b = bspcsg::Solid::cuboid(glam::DVec3::new(1.0, 2.0, 3.0)).unwrap();
-    /// assert!((b.volume() - 6.0).abs() < 1e-12);
-    /// ```
-    pub fn cuboid(size: DVec3) -> Result<Solid> {
-        positive("size.x", size.x)?;
-        positive("size.y", size.y)?;
-        positive("size.z", size.z)?;
-        let h = size * 0.5;
-        let corner = |i: usize| {
-            DVec3::new(
-                if i & 1 != 0 { h.x } else { -h.x },
-                if i & 2 != 0 { h.y } else { -h.y },
-                if i & 4 != 0 { h.z } else { -h.z },
-            )
-        };
-        // Corner index bits: 1 = +x, 2 = +y, 4 = +z; each face counter-clockwise from outside.
-        const FACES: [[usize; 4]; 6] = [
-            [0, 4, 6, 2], // -x
-            [1, 3, 7, 5], // +x
-            [0, 1, 5, 4], // -y
-            [2, 6, 7, 3], // +y
-            [0, 2, 3, 1], // -z
-            [4, 5, 7, 6], // +z
-        ];
-        let polygons = FACES
-            .iter()
-            .map(|f| face(f.map(corner).as_slice()))
-            .collect::<Result<_>>()?;
-        Ok(Solid::from_polygons(polygons))
-    }
-
-    /// A cube of edge `size`, centred at the origin.
-    pub fn cube(size: f64) -> Result<Solid> {
-        Solid::cuboid(DVec3::splat(size))
-    }
+/// The six faces of an axis-aligned box of the given edge lengths, centred at the origin.
+pub(crate) fn cuboid(size: DVec3) -> Result<Vec<Polygon>> {
+    positive("size.x", size.x)?;
+    positive("size.y", size.y)?;
+    positive("size.z", size.z)?;
+    let h = size * 0.5;
+    let corner = |i: usize| {
+        DVec3::new(
+            if i & 1 != 0 { h.x } else { -h.x },
+            if i & 2 != 0 { h.y } else { -h.y },
+            if i & 4 != 0 { h.z } else { -h.z },
+        )
+    };
+    // Corner index bits: 1 = +x, 2 = +y, 4 = +z; each face counter-clockwise from outside.
+    const FACES: [[usize; 4]; 6] = [
+        [0, 4, 6, 2], // -x
+        [1, 3, 7, 5], // +x
+        [0, 1, 5, 4], // -y
+        [2, 6, 7, 3], // +y
+        [0, 2, 3, 1], // -z
+        [4, 5, 7, 6], // +z
+    ];
+    FACES
+        .iter()
+        .map(|f| face(f.map(corner).as_slice()))
+        .collect()
 }

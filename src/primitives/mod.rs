@@ -1,9 +1,14 @@
-//! Primitive solids, centred at the origin with Y up, and segment counts from a chordal
-//! tolerance. Invalid parameters return [`Error::InvalidParameter`]; nothing here panics.
+//! The faces of primitive solids, centred at the origin with Y up, and segment counts from a
+//! chordal tolerance. The solids themselves are made in `solid/primitives.rs`. Invalid
+//! parameters return [`Error::InvalidParameter`]; nothing here panics.
 
 mod cuboid;
 mod polyhedron;
 mod revolved;
+
+pub(crate) use cuboid::cuboid;
+pub(crate) use polyhedron::polyhedron;
+pub(crate) use revolved::{frustum, sphere, torus};
 
 use crate::error::{Error, Result};
 use crate::polygon::Polygon;

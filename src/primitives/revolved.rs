@@ -7,86 +7,70 @@ use glam::DVec3;
 use super::{budget, count, face, positive};
 use crate::error::{Error, Result};
 use crate::polygon::Polygon;
-use crate::solid::Solid;
 
-impl Solid {
-    /// A UV sphere: `segments` around the Y axis (≥ 3), `rings` from pole to pole (≥ 2).
-    /// Quads between rings, triangles at the poles.
-    ///
-    /// ```
-    /// let s = bspcsg::Solid::sphere(1.0, 64, 32).unwrap();
-    /// assert!((s.volume() - 4.0 / 3.0 * std::f64::consts::PI).abs() < 0.02);
-    /// ```
-    pub fn sphere(radius: f64, segments: u32, rings: u32) -> Result<Solid> {
-        positive("radius", radius)?;
-        count("segments", segments, 3)?;
-        count("rings", rings, 2)?;
-        budget(segments, rings)?;
-        let profile: Vec<(f64, f64)> = (0..=rings)
-            .map(|i| {
-                if i == 0 {
-                    (0.0, radius)
-                } else if i == rings {
-                    (0.0, -radius)
-                } else {
-                    let t = std::f64::consts::PI * i as f64 / rings as f64;
-                    (radius * t.sin(), radius * t.cos())
-                }
-            })
-            .collect();
-        revolve(&profile, segments, false)
-    }
-
-    /// A cylinder of `radius` along Y from `-height/2` to `height/2`, `segments` ≥ 3 around.
-    pub fn cylinder(radius: f64, height: f64, segments: u32) -> Result<Solid> {
-        Solid::frustum(radius, radius, height, segments)
-    }
-
-    /// A cone along Y: base of `radius` at `-height/2`, apex at `height/2`.
-    pub fn cone(radius: f64, height: f64, segments: u32) -> Result<Solid> {
-        Solid::frustum(radius, 0.0, height, segments)
-    }
-
-    /// A frustum along Y: radius `r_bottom` at `-height/2`, `r_top` at `height/2`. One radius
-    /// may be zero (a cone); caps are single polygons.
-    pub fn frustum(r_bottom: f64, r_top: f64, height: f64, segments: u32) -> Result<Solid> {
-        for (name, r) in [("r_bottom", r_bottom), ("r_top", r_top)] {
-            if !(r.is_finite() && r >= 0.0) {
-                return Err(Error::param(name, r, "must be finite and ≥ 0"));
+/// The faces of a UV sphere: `segments` around the Y axis, `rings` from pole to pole.
+pub(crate) fn sphere(radius: f64, segments: u32, rings: u32) -> Result<Vec<Polygon>> {
+    positive("radius", radius)?;
+    count("segments", segments, 3)?;
+    count("rings", rings, 2)?;
+    budget(segments, rings)?;
+    let profile: Vec<(f64, f64)> = (0..=rings)
+        .map(|i| {
+            if i == 0 {
+                (0.0, radius)
+            } else if i == rings {
+                (0.0, -radius)
+            } else {
+                let t = std::f64::consts::PI * i as f64 / rings as f64;
+                (radius * t.sin(), radius * t.cos())
             }
-        }
-        if r_bottom == 0.0 && r_top == 0.0 {
-            return Err(Error::param("r_bottom", 0.0, "and r_top cannot both be 0"));
-        }
-        positive("height", height)?;
-        count("segments", segments, 3)?;
-        let h = height * 0.5;
-        // The cap centres on the axis close the profile; revolve() turns them into flat caps.
-        let profile = [(0.0, h), (r_top, h), (r_bottom, -h), (0.0, -h)];
-        let profile: Vec<(f64, f64)> = dedup_axis_points(&profile);
-        revolve(&profile, segments, false)
-    }
+        })
+        .collect();
+    revolve(&profile, segments, false)
+}
 
-    /// A torus about the Y axis: tube centre at distance `major` from the axis, tube radius
-    /// `minor < major`; `segments` ≥ 3 around the axis, `rings` ≥ 3 around the tube.
-    pub fn torus(major: f64, minor: f64, segments: u32, rings: u32) -> Result<Solid> {
-        positive("major", major)?;
-        positive("minor", minor)?;
-        if minor >= major {
-            return Err(Error::param("minor", minor, "must be smaller than major"));
+/// The faces of a frustum along Y (one radius may be zero: a cone); caps are single polygons.
+pub(crate) fn frustum(
+    r_bottom: f64,
+    r_top: f64,
+    height: f64,
+    segments: u32,
+) -> Result<Vec<Polygon>> {
+    for (name, r) in [("r_bottom", r_bottom), ("r_top", r_top)] {
+        if !(r.is_finite() && r >= 0.0) {
+            return Err(Error::param(name, r, "must be finite and ≥ 0"));
         }
-        count("segments", segments, 3)?;
-        count("rings", rings, 3)?;
-        budget(segments, rings)?;
-        // Round the tube downward on its outer side, so faces point out of the tube.
-        let profile: Vec<(f64, f64)> = (0..rings)
-            .map(|k| {
-                let v = -TAU * k as f64 / rings as f64;
-                (major + minor * v.cos(), minor * v.sin())
-            })
-            .collect();
-        revolve(&profile, segments, true)
     }
+    if r_bottom == 0.0 && r_top == 0.0 {
+        return Err(Error::param("r_bottom", 0.0, "and r_top cannot both be 0"));
+    }
+    positive("height", height)?;
+    count("segments", segments, 3)?;
+    let h = height * 0.5;
+    // The cap centres on the axis close the profile; revolve() turns them into flat caps.
+    let profile = [(0.0, h), (r_top, h), (r_bottom, -h), (0.0, -h)];
+    let profile: Vec<(f64, f64)> = dedup_axis_points(&profile);
+    revolve(&profile, segments, false)
+}
+
+/// The faces of a torus about the Y axis.
+pub(crate) fn torus(major: f64, minor: f64, segments: u32, rings: u32) -> Result<Vec<Polygon>> {
+    positive("major", major)?;
+    positive("minor", minor)?;
+    if minor >= major {
+        return Err(Error::param("minor", minor, "must be smaller than major"));
+    }
+    count("segments", segments, 3)?;
+    count("rings", rings, 3)?;
+    budget(segments, rings)?;
+    // Round the tube downward on its outer side, so faces point out of the tube.
+    let profile: Vec<(f64, f64)> = (0..rings)
+        .map(|k| {
+            let v = -TAU * k as f64 / rings as f64;
+            (major + minor * v.cos(), minor * v.sin())
+        })
+        .collect();
+    revolve(&profile, segments, true)
 }
 
 /// A cone's profile has its apex on the axis twice over (cap centre and apex); keep one.
@@ -111,7 +95,7 @@ fn dedup_axis_points(profile: &[(f64, f64)]) -> Vec<(f64, f64)> {
 /// consecutive profile points both have the same `y` and one of them lies on the axis, the band
 /// between them is a flat cap and becomes one polygon; other axis points become poles (fans of
 /// triangles). A closed profile (torus) wraps around.
-fn revolve(profile: &[(f64, f64)], segments: u32, closed: bool) -> Result<Solid> {
+fn revolve(profile: &[(f64, f64)], segments: u32, closed: bool) -> Result<Vec<Polygon>> {
     let n = segments as usize;
     let angle: Vec<(f64, f64)> = (0..n)
         .map(|j| {
@@ -155,5 +139,5 @@ fn revolve(profile: &[(f64, f64)], segments: u32, closed: bool) -> Result<Solid>
             polygons.push(face(&quad)?);
         }
     }
-    Ok(Solid::from_polygons(polygons))
+    Ok(polygons)
 }

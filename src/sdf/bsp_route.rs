@@ -10,11 +10,11 @@ use super::marching_cubes::{BakeOptions, Grid, march};
 use super::scene::Scene;
 use super::shapes::{Shape, Shape2};
 use super::tree::{BoolKind, Frame, NodeId, NodeKind};
-use crate::boolean::BoolOp;
 use crate::error::{Error, Result};
 use crate::geom::Aabb;
 use crate::polygon::Polygon;
 use crate::primitives::segments_for_tolerance;
+use crate::solid::BoolOp;
 use crate::solid::Solid;
 
 /// How to turn a scene into a [`Solid`] (the BSP route).
@@ -226,7 +226,7 @@ fn combine(op: BoolKind, children: Vec<Solid>) -> Solid {
         BoolKind::Intersect => BoolOp::Intersection,
         BoolKind::Subtract => BoolOp::Difference,
     };
-    crate::boolean::boolean_all(op, children)
+    crate::solid::boolean_all(op, children)
 }
 
 /// A counter-clockwise polygon extruded over `|z| ≤ h`.

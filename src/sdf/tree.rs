@@ -4,7 +4,7 @@
 use glam::{DAffine3, DVec3};
 
 use super::shapes::Shape;
-use crate::solid::euler_degrees;
+use crate::geom::euler_degrees;
 
 /// Index of a node in [`Tree::nodes`].
 pub(crate) type NodeId = u32;

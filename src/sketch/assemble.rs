@@ -8,7 +8,7 @@ use glam::DVec2;
 
 use super::{Region, crossing, signed_area2};
 use crate::disjoint_sets::DisjointSets;
-use crate::mesh::weld::FxHashMap;
+use crate::hash::FxHashMap;
 
 /// Vertices and the directed edges between them, after welding.
 pub(super) struct Graph {

@@ -19,8 +19,8 @@ use glam::DVec2;
 use super::classify::{Class, classify};
 use super::knife::KnifeTree;
 use super::{Sketch, assemble};
-use crate::boolean::BoolOp;
 use crate::geom::Tolerance;
+use crate::solid::BoolOp;
 
 impl Sketch {
     /// Combines two sketches. Always succeeds; the result may be empty.

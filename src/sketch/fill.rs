@@ -198,7 +198,7 @@ fn filled_boundary(pieces: &[[DVec2; 2]], rule: FillRule, eps: f64) -> Vec<[DVec
     for &(a, b, _) in &graph.edges {
         sets.union(a as usize, b as usize);
     }
-    let mut comp_faces: crate::mesh::weld::FxHashMap<usize, Vec<u32>> = Default::default();
+    let mut comp_faces: crate::hash::FxHashMap<usize, Vec<u32>> = Default::default();
     let mut face_comp = vec![usize::MAX; face_area.len()];
     for (h, &(a, _)) in half.iter().enumerate() {
         let f = face[h] as usize;
@@ -209,7 +209,7 @@ fn filled_boundary(pieces: &[[DVec2; 2]], rule: FillRule, eps: f64) -> Vec<[DVec
         }
     }
     // Edges and boxes per component, for the windings of one component's outside.
-    let mut comp_edges: crate::mesh::weld::FxHashMap<usize, Vec<usize>> = Default::default();
+    let mut comp_edges: crate::hash::FxHashMap<usize, Vec<usize>> = Default::default();
     for (k, &(a, _, _)) in graph.edges.iter().enumerate() {
         comp_edges.entry(sets.find(a as usize)).or_default().push(k);
     }

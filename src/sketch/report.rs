@@ -4,7 +4,7 @@ use glam::DVec2;
 
 use super::fill::box_pairs;
 use super::{Sketch, crossing, signed_area2};
-use crate::mesh::weld::FxHashMap;
+use crate::hash::FxHashMap;
 
 /// What [`Sketch::report`] finds. A sketch is valid when every count is zero.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

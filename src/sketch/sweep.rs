@@ -9,8 +9,8 @@ use glam::{DMat2, DVec2, DVec3};
 
 use super::{Region, Sketch, lift};
 use crate::error::{Error, Result};
-use crate::mesh::triangulate::triangulate_boundary;
-use crate::mesh::weld::FxHashMap;
+use crate::geom::triangulate::triangulate_boundary;
+use crate::hash::FxHashMap;
 use crate::polygon::Polygon;
 use crate::primitives::{MAX_SEGMENTS, positive};
 use crate::solid::Solid;

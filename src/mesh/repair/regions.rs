@@ -5,8 +5,8 @@ use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::Ring;
-use crate::mesh::triangulate::{ear_clip_boundary, triangulate_boundary};
-use crate::mesh::weld::FxHashMap;
+use crate::geom::triangulate::{ear_clip_boundary, triangulate_boundary};
+use crate::hash::FxHashMap;
 use crate::polygon::Polygon;
 
 /// Rings of one source in one plane, connected through shared edges.

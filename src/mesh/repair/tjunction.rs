@@ -7,7 +7,8 @@ use smallvec::SmallVec;
 use super::Ring;
 use crate::geom::Aabb;
 use crate::geom::bvh::Bvh;
-use crate::mesh::weld::{FxHashSet, Wide};
+use crate::hash::FxHashSet;
+use crate::mesh::weld::Wide;
 
 /// Inserts into every ring edge, in order along it, each vertex within its reach (`delta`, or
 /// `wide.delta` for the listed crack vertices) of the edge's interior and farther than that

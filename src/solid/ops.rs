@@ -1,0 +1,137 @@
+//! The named wrappers of [`boolean`] (`union`, `intersection`, `difference`), the operators
+//! `|`, `&`, `-` and their assigning forms, and the balanced n-ary reductions.
+
+use std::ops::{BitAnd, BitAndAssign, BitOr, BitOrAssign, Sub, SubAssign};
+
+use rayon::prelude::*;
+
+use super::Solid;
+use super::boolean::{BoolOp, boolean, boolean_owned};
+
+impl Solid {
+    /// Points in `self` or `other`.
+    pub fn union(&self, other: &Solid) -> Solid {
+        boolean(self, other, BoolOp::Union)
+    }
+
+    /// Points in both `self` and `other`.
+    pub fn intersection(&self, other: &Solid) -> Solid {
+        boolean(self, other, BoolOp::Intersection)
+    }
+
+    /// Points in `self` and not in `other`.
+    pub fn difference(&self, other: &Solid) -> Solid {
+        boolean(self, other, BoolOp::Difference)
+    }
+
+    /// The union of many solids, reduced as a balanced tree (pairs in parallel), so each
+    /// boolean sees operands of similar size. Empty input gives the empty solid.
+    pub fn union_all(solids: impl IntoIterator<Item = Solid>) -> Solid {
+        reduce_balanced(solids.into_iter().collect(), BoolOp::Union)
+    }
+
+    /// The intersection of many solids, reduced as a balanced tree. Empty input gives the empty
+    /// solid.
+    pub fn intersection_all(solids: impl IntoIterator<Item = Solid>) -> Solid {
+        reduce_balanced(solids.into_iter().collect(), BoolOp::Intersection)
+    }
+}
+
+/// Combines many solids left to right, `s₀ op s₁ op s₂ …`: the n-ary form of [`boolean`], for
+/// callers (such as the command line) that take any number of operands.
+///
+/// Union and intersection are reduced as balanced trees ([`Solid::union_all`],
+/// [`Solid::intersection_all`]). Difference takes the union of all the others away from the
+/// first, `s₀ − (s₁ ∪ s₂ ∪ …)`: the same set as subtracting them one by one, but one difference
+/// against a balanced union instead of a chain that clips the growing result again and again.
+/// Empty input gives the empty solid; a single solid comes back as it is.
+///
+/// ```
+/// use bspcsg::{BoolOp, Solid, boolean_all};
+/// use glam::DVec3;
+///
+/// let cube = |x: f64| Solid::cube(1.0)?.translate(DVec3::new(x, 0.0, 0.0));
+/// let row = boolean_all(BoolOp::Union, [cube(0.0)?, cube(0.5)?, cube(1.0)?]);
+/// assert!((row.volume() - 2.0).abs() < 1e-9);
+/// let cut = boolean_all(BoolOp::Difference, [cube(0.0)?, cube(0.5)?, cube(-0.75)?]);
+/// assert!((cut.volume() - 0.25).abs() < 1e-9);
+/// # Ok::<(), bspcsg::Error>(())
+/// ```
+pub fn boolean_all(op: BoolOp, solids: impl IntoIterator<Item = Solid>) -> Solid {
+    let mut solids = solids.into_iter();
+    match op {
+        BoolOp::Union => Solid::union_all(solids),
+        BoolOp::Intersection => Solid::intersection_all(solids),
+        BoolOp::Difference => match solids.next() {
+            Some(first) => boolean_owned(first, Solid::union_all(solids), BoolOp::Difference),
+            None => Solid::empty(),
+        },
+    }
+}
+
+fn reduce_balanced(mut level: Vec<Solid>, op: BoolOp) -> Solid {
+    while level.len() > 1 {
+        let mut pairs = Vec::with_capacity(level.len() / 2 + 1);
+        let mut it = level.into_iter();
+        while let Some(a) = it.next() {
+            pairs.push((a, it.next()));
+        }
+        level = pairs
+            .into_par_iter()
+            .map(|(a, b)| match b {
+                Some(b) => boolean_owned(a, b, op),
+                None => a,
+            })
+            .collect();
+    }
+    level.pop().unwrap_or_default()
+}
+
+macro_rules! operator {
+    ($trait:ident, $method:ident, $assign:ident, $assign_method:ident, $op:expr) => {
+        impl $trait<&Solid> for &Solid {
+            type Output = Solid;
+            fn $method(self, rhs: &Solid) -> Solid {
+                boolean(self, rhs, $op)
+            }
+        }
+        impl $trait<Solid> for Solid {
+            type Output = Solid;
+            fn $method(self, rhs: Solid) -> Solid {
+                boolean_owned(self, rhs, $op)
+            }
+        }
+        impl $trait<&Solid> for Solid {
+            type Output = Solid;
+            fn $method(self, rhs: &Solid) -> Solid {
+                boolean_owned(self, rhs.clone(), $op)
+            }
+        }
+        impl $trait<Solid> for &Solid {
+            type Output = Solid;
+            fn $method(self, rhs: Solid) -> Solid {
+                boolean_owned(self.clone(), rhs, $op)
+            }
+        }
+        impl $assign<&Solid> for Solid {
+            fn $assign_method(&mut self, rhs: &Solid) {
+                *self = boolean_owned(std::mem::take(self), rhs.clone(), $op);
+            }
+        }
+        impl $assign<Solid> for Solid {
+            fn $assign_method(&mut self, rhs: Solid) {
+                *self = boolean_owned(std::mem::take(self), rhs, $op);
+            }
+        }
+    };
+}
+
+operator!(BitOr, bitor, BitOrAssign, bitor_assign, BoolOp::Union);
+operator!(
+    BitAnd,
+    bitand,
+    BitAndAssign,
+    bitand_assign,
+    BoolOp::Intersection
+);
+operator!(Sub, sub, SubAssign, sub_assign, BoolOp::Difference);
