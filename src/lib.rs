@@ -73,7 +73,7 @@ mod sketch;
 mod solid;
 mod topology;
 
-pub use error::{Error, Result};
+pub use error::{Error, MeshDefect, Result};
 pub use geom::{Aabb, MAX_COORDINATE, Plane, Side, Tolerance};
 pub use io::{
     Format, ParseFormatError, read_mesh, read_mesh_as, read_solid, write_mesh, write_mesh_as,

@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 
 use base64::Engine as _;
 use bspcsg::{
-    Error, Format, Material, Mesh, Solid, read_mesh, read_mesh_as, write_mesh, write_mesh_as,
+    Error, Format, Material, Mesh, MeshDefect, Solid, read_mesh, read_mesh_as, write_mesh,
+    write_mesh_as,
 };
 use common::models;
 use glam::DVec3;
@@ -573,12 +574,21 @@ fn failed_writes_leave_nothing_behind() {
     bad.positions[0].x = 1e300; // beyond float32
     assert!(matches!(
         write_mesh(&p, &bad, &[]),
-        Err(Error::InvalidMesh(_))
+        Err(Error::InvalidMesh {
+            defect: MeshDefect::TooLargeForFormat { .. },
+            ..
+        })
     ));
     bad.triangles[0][0] = u32::MAX;
     assert!(matches!(
         write_mesh(&p, &bad, &[]),
-        Err(Error::InvalidMesh(_))
+        Err(Error::InvalidMesh {
+            defect: MeshDefect::IndexOutOfRange {
+                index: u32::MAX,
+                ..
+            },
+            ..
+        })
     ));
     let bad_colour = [Material {
         name: "x".into(),

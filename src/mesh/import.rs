@@ -2,7 +2,7 @@
 //! merged into the convex polygons `Solid::from_mesh` is made of.
 
 use super::Mesh;
-use crate::error::{Error, Result};
+use crate::error::{Error, MeshDefect, Result};
 use crate::geom::is_zero_area;
 use crate::hash::{FxBuild, FxHashMap};
 use crate::polygon::{Polygon, Vertices};
@@ -66,11 +66,10 @@ impl FromMeshOptions {
 /// (the rules are documented on `Solid::from_mesh_with`).
 pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Result<Vec<Polygon>> {
     if mesh.sources.len() != mesh.triangles.len() {
-        return Err(Error::InvalidMesh(format!(
-            "{} source ids for {} triangles; there must be one per triangle",
-            mesh.sources.len(),
-            mesh.triangles.len()
-        )));
+        return Err(Error::mesh(MeshDefect::SourceCount {
+            sources: mesh.sources.len(),
+            triangles: mesh.triangles.len(),
+        }));
     }
     check_face_indices(
         &mesh.triangles,
@@ -86,12 +85,10 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
         check_closed(&mesh.triangles)?;
         let report = mesh.report();
         if report.inverted_shells > 0 {
-            return Err(Error::InvalidMesh(format!(
-                "inside out: {} of {} shells enclose no positive volume and are not \
-                 cavities (faces must wind counter-clockwise seen from outside)",
-                report.inverted_shells,
-                report.shells.len()
-            )));
+            return Err(Error::mesh(MeshDefect::InsideOut {
+                inverted_shells: report.inverted_shells,
+                shells: report.shells.len(),
+            }));
         }
     }
     // One polygon per triangle of non-zero area. Repeated indices were refused or have

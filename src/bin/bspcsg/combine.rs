@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use bspcsg::{BoolOp, Error, FromMeshOptions, Material, boolean_all, read_solid};
+use bspcsg::{BoolOp, FromMeshOptions, Material, MeshDefect, boolean_all, read_solid};
 
 use crate::cli::BooleanArgs;
 use crate::failure::Failure;
@@ -24,8 +24,10 @@ pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Re
         let solid = read_solid(path, &options).map_err(|e| {
             // The flag helps with open or inside-out input only, and only if not given yet.
             let hint = !args.allow_open
-                && matches!(&e, Error::InvalidMesh(m)
-                    if m.contains(" is not closed") || m.contains(" is inside out"));
+                && matches!(
+                    e.mesh_defect(),
+                    Some(MeshDefect::NotClosed { .. } | MeshDefect::InsideOut { .. })
+                );
             let mut f = Failure::from(e);
             if hint {
                 f.message.push_str(" (pass --allow-open to go on anyway)");

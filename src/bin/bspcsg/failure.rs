@@ -24,7 +24,7 @@ impl From<Error> for Failure {
     /// options or writing, and exits 1.
     fn from(e: Error) -> Self {
         let code = match e {
-            Error::InvalidMesh(_) => 2,
+            Error::InvalidMesh { .. } => 2,
             _ => 1,
         };
         Failure {

@@ -11,7 +11,7 @@ use gltf::mesh::Mode;
 
 use super::container::glb_bytes;
 use super::uri::percent_encode;
-use crate::error::{Error, Result};
+use crate::error::{Error, MeshDefect, Result};
 use crate::hash::FxHashMap;
 use crate::io::{DEFAULT_MATERIAL_COLOR, DEFAULT_MATERIAL_NAME, Files, OutFile, generator};
 use crate::mesh::{Material, Mesh};
@@ -271,7 +271,12 @@ impl Document {
         if glb {
             let json = root.to_vec().map_err(to_json_err)?;
             let main = glb_bytes(json, if bin.is_empty() { None } else { Some(bin) }).ok_or_else(
-                || Error::InvalidMesh("the mesh is too large for a GLB file (4 GiB)".into()),
+                || {
+                    Error::mesh(MeshDefect::TooLargeForFormat {
+                        format: "GLB",
+                        detail: format!("more than {} bytes", u32::MAX),
+                    })
+                },
             )?;
             Ok(Files {
                 main,

@@ -22,7 +22,7 @@ impl Grid {
             return Err(Error::param(
                 "refine_steps",
                 opts.refine_steps as f64,
-                "must be at most 64",
+                format!("must be at most {MAX_REFINE_STEPS}"),
             ));
         }
         let Some((region, pad)) = region(solid_box, opts)? else {
@@ -37,7 +37,9 @@ impl Grid {
                 return Err(Error::param(
                     "cell",
                     cell,
-                    "gives more than 16384 cells along an axis; use a larger cell",
+                    format!(
+                        "gives more than {MAX_GRID_CELLS} cells along an axis; use a larger cell"
+                    ),
                 ));
             }
             n[i] = cells as usize;
@@ -46,7 +48,7 @@ impl Grid {
             return Err(Error::param(
                 "cell",
                 cell,
-                "gives more than 1024³ cells in all; use a larger cell",
+                format!("gives more than {MAX_GRID_TOTAL} cells in all; use a larger cell"),
             ));
         }
         let extent = DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64) * cell;
@@ -83,12 +85,10 @@ fn region(solid_box: &Aabb, opts: &BakeOptions) -> Result<Option<(Aabb, bool)>> 
                 return Ok(None);
             }
             if !(solid_box.min.is_finite() && solid_box.max.is_finite()) {
-                return Err(Error::Scene {
-                    file: None,
-                    json_path: "$".into(),
-                    message: "the scene is unbounded (a half-space not intersected with a \
-                              bounded shape); give BakeOptions::bounds"
-                        .into(),
+                return Err(Error::Unbounded {
+                    what: "the scene",
+                    why: "a half-space not intersected with a bounded shape",
+                    remedy: "give BakeOptions::bounds",
                 });
             }
             Ok(Some((*solid_box, true)))
@@ -112,7 +112,7 @@ fn cell_size(longest: f64, opts: &BakeOptions, pad: bool) -> Result<f64> {
                 return Err(Error::param(
                     "resolution",
                     r as f64,
-                    "must be in 1..=16384 cells",
+                    format!("must be in 1..={MAX_GRID_CELLS} cells"),
                 ));
             }
             // The padding cells count towards the resolution.

@@ -156,7 +156,9 @@ pub(crate) fn march<S: Source + ?Sized>(source: &S, grid: Grid, refine_steps: u3
         return Err(Error::param(
             "cell",
             grid.cell,
-            "makes more than 33554432 triangles on this surface; use a larger cell",
+            format!(
+                "makes more than {MAX_BAKE_TRIANGLES} triangles on this surface; use a larger cell"
+            ),
         ));
     }
     Ok(merge(parts))
