@@ -70,6 +70,7 @@ mod polygon;
 mod primitives;
 pub mod raymarch;
 mod sdf;
+mod sketch;
 mod solid;
 mod topology;
 
@@ -86,6 +87,7 @@ pub use sdf::{
     MAX_POLYGON_POINTS, MAX_REFINE_STEPS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene,
     TessellationOptions,
 };
+pub use sketch::{ExtrudeOptions, FillRule, Region, Sketch, SketchReport, TWIST_DEGREES_PER_SLICE};
 pub use solid::{BoolOp, Containment, PointClassifier, Solid, boolean, boolean_all};
 
 pub use glam;
