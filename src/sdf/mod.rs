@@ -10,9 +10,11 @@
 
 mod bsp_route;
 mod eval;
+mod extrusion;
 mod marching_cubes;
 mod scene;
 mod shapes;
+mod shapes2d;
 mod tree;
 
 use rayon::prelude::*;
