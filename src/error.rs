@@ -1,6 +1,10 @@
-//! The crate's one error type.
+//! The crate's one error type, and the defects of meshes that do not bound a solid.
 
+use std::borrow::Cow;
+use std::fmt;
 use std::path::PathBuf;
+
+use glam::DVec3;
 
 /// Everything that can go wrong in `bspcsg`, with enough context to fix it.
 #[non_exhaustive]
@@ -14,15 +18,34 @@ pub enum Error {
         name: &'static str,
         /// The value that was refused.
         value: f64,
-        /// What the value must be instead.
-        reason: &'static str,
+        /// What the value must be instead (limits quoted from their constants).
+        reason: Cow<'static, str>,
     },
 
-    /// An indexed mesh or polyhedron is not a valid closed solid (open, non-manifold, indices out
-    /// of range, non-finite coordinates …). The message carries the counts. Remedy: repair the
-    /// mesh, or use the lenient options where the API offers them.
-    #[error("invalid mesh: {0}")]
-    InvalidMesh(String),
+    /// An option leaves a region unbounded where a bounded one is needed: a scene with a
+    /// half-space not intersected away, baked or tessellated without bounds. Remedy: the
+    /// option named in the message.
+    #[error("{what} is unbounded ({why}); {remedy}")]
+    Unbounded {
+        /// What is unbounded.
+        what: &'static str,
+        /// Why.
+        why: &'static str,
+        /// How to fix it.
+        remedy: &'static str,
+    },
+
+    /// An indexed mesh or polyhedron is not a valid closed solid, or a mesh does not fit the
+    /// file format it is written to. [`MeshDefect`] says which, with counts; `path` names the
+    /// file the mesh came from, where there is one. Remedy: repair the mesh, or use the lenient
+    /// options where the API offers them.
+    #[error("invalid mesh: {}", mesh_message(path.as_ref(), defect))]
+    InvalidMesh {
+        /// The file the mesh was read from, if any.
+        path: Option<PathBuf>,
+        /// What is wrong.
+        defect: MeshDefect,
+    },
 
     /// Reading or writing a file failed at the operating-system level.
     #[error("{}: {source}", path.display())]
@@ -73,11 +96,231 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 impl Error {
     /// Shorthand for [`Error::InvalidParameter`].
-    pub(crate) fn param(name: &'static str, value: f64, reason: &'static str) -> Self {
+    pub(crate) fn param(
+        name: &'static str,
+        value: f64,
+        reason: impl Into<Cow<'static, str>>,
+    ) -> Self {
         Error::InvalidParameter {
             name,
             value,
-            reason,
+            reason: reason.into(),
         }
+    }
+
+    /// An [`Error::InvalidMesh`] not tied to a file.
+    pub(crate) fn mesh(defect: MeshDefect) -> Self {
+        Error::InvalidMesh { path: None, defect }
+    }
+
+    /// The mesh defect, for an [`Error::InvalidMesh`].
+    #[must_use]
+    pub fn mesh_defect(&self) -> Option<&MeshDefect> {
+        match self {
+            Error::InvalidMesh { defect, .. } => Some(defect),
+            _ => None,
+        }
+    }
+}
+
+/// Why a mesh does not bound a solid, or does not fit a file format: the kinds callers match
+/// on (the command line offers `--allow-open` for [`NotClosed`](Self::NotClosed) and
+/// [`InsideOut`](Self::InsideOut) only). `Display` gives the counts.
+#[non_exhaustive]
+#[derive(Clone, Debug, PartialEq)]
+pub enum MeshDefect {
+    /// No faces at all (a polyhedron needs some).
+    NoFaces,
+    /// Edges used by one face, by more than two, or by two in the same direction.
+    NotClosed {
+        /// Edges used by one face.
+        boundary_edges: usize,
+        /// Edges used by more than two faces.
+        non_manifold_edges: usize,
+        /// Edges used by two faces in the same direction.
+        inconsistent_edges: usize,
+        /// All edges.
+        edges: usize,
+    },
+    /// Closed, but shells enclose no positive volume and are no cavities: the faces wind
+    /// clockwise seen from outside.
+    InsideOut {
+        /// Shells facing inward.
+        inverted_shells: usize,
+        /// All shells.
+        shells: usize,
+    },
+    /// Faces (or triangles) refer to vertices that do not exist.
+    IndexOutOfRange {
+        /// How many faces do.
+        faces: usize,
+        /// The first such face.
+        first_face: usize,
+        /// The index it uses.
+        index: u32,
+        /// How many vertices there are.
+        vertices: usize,
+    },
+    /// A face with fewer than three indices.
+    TooFewIndices {
+        /// The face.
+        face: usize,
+        /// Its number of indices.
+        indices: usize,
+    },
+    /// Faces that use one vertex twice.
+    RepeatedIndex {
+        /// How many faces do.
+        faces: usize,
+        /// The first such face.
+        first_face: usize,
+        /// Its indices.
+        indices: Vec<u32>,
+    },
+    /// A face whose corners span no area.
+    ZeroAreaFace {
+        /// The face.
+        face: usize,
+    },
+    /// A face whose boundary crosses itself, so it cannot be triangulated.
+    SelfIntersectingFace {
+        /// The face.
+        face: usize,
+    },
+    /// Vertices with a NaN or infinite coordinate.
+    NonFinite {
+        /// How many.
+        vertices: usize,
+        /// The first.
+        first: usize,
+        /// Its position.
+        position: DVec3,
+    },
+    /// Vertices beyond the supported range, [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+    BeyondRange {
+        /// How many.
+        vertices: usize,
+        /// The first.
+        first: usize,
+        /// Its position.
+        position: DVec3,
+        /// The largest magnitude accepted, [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+        limit: f64,
+    },
+    /// A source-id list whose length is not the number of triangles.
+    SourceCount {
+        /// Source ids given.
+        sources: usize,
+        /// Triangles.
+        triangles: usize,
+    },
+    /// The mesh does not fit the file format: coordinates beyond float32, more triangles or
+    /// bytes than the format can count.
+    TooLargeForFormat {
+        /// The format's name.
+        format: &'static str,
+        /// What exceeds which limit.
+        detail: String,
+    },
+}
+
+impl fmt::Display for MeshDefect {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MeshDefect::NoFaces => f.write_str("no faces"),
+            MeshDefect::NotClosed {
+                boundary_edges,
+                non_manifold_edges,
+                inconsistent_edges,
+                edges,
+            } => {
+                let defects: Vec<String> = [
+                    (*boundary_edges, "boundary edges"),
+                    (*non_manifold_edges, "non-manifold edges"),
+                    (*inconsistent_edges, "inconsistently oriented edges"),
+                ]
+                .into_iter()
+                .filter(|&(n, _)| n > 0)
+                .map(|(n, what)| format!("{n} {what}"))
+                .collect();
+                write!(f, "not closed: {} (of {edges} edges)", defects.join(", "))
+            }
+            MeshDefect::InsideOut {
+                inverted_shells,
+                shells,
+            } => write!(
+                f,
+                "inside out: {inverted_shells} of {shells} shells enclose no positive volume and \
+                 are not cavities (faces must wind counter-clockwise seen from outside)"
+            ),
+            MeshDefect::IndexOutOfRange {
+                faces,
+                first_face,
+                index,
+                vertices,
+            } => write!(
+                f,
+                "faces with a vertex index out of range: {faces} (first: face {first_face} uses \
+                 {index}, but there are only {vertices} vertices)"
+            ),
+            MeshDefect::TooFewIndices { face, indices } => write!(
+                f,
+                "face {face} has {indices} indices; a face needs at least 3"
+            ),
+            MeshDefect::RepeatedIndex {
+                faces,
+                first_face,
+                indices,
+            } => write!(
+                f,
+                "faces that repeat a vertex index: {faces} (first: face {first_face} = {indices:?})"
+            ),
+            MeshDefect::ZeroAreaFace { face } => write!(f, "face {face} has no area"),
+            MeshDefect::SelfIntersectingFace { face } => write!(
+                f,
+                "face {face} is self-intersecting and cannot be triangulated"
+            ),
+            MeshDefect::NonFinite {
+                vertices,
+                first,
+                position,
+            } => write!(
+                f,
+                "vertices with a non-finite coordinate: {vertices} (first: vertex {first} = \
+                 {position})"
+            ),
+            MeshDefect::BeyondRange {
+                vertices,
+                first,
+                position,
+                limit,
+            } => write!(
+                f,
+                "vertices beyond the supported range of ±{limit:e}: {vertices} (first: vertex \
+                 {first} = [{:e}, {:e}, {:e}]); scale the mesh down",
+                position.x, position.y, position.z
+            ),
+            MeshDefect::SourceCount { sources, triangles } => write!(
+                f,
+                "{sources} source ids for {triangles} triangles; there must be one per triangle"
+            ),
+            MeshDefect::TooLargeForFormat { format, detail } => {
+                write!(f, "too large for {format}: {detail}")
+            }
+        }
+    }
+}
+
+/// `x.obj is not closed: …` / `x.obj is inside out: …` where the defect says what the mesh is,
+/// `x.obj is not a valid solid: …` for the rest; the bare defect without a file.
+fn mesh_message(path: Option<&PathBuf>, defect: &MeshDefect) -> String {
+    match path {
+        None => defect.to_string(),
+        Some(p) => match defect {
+            MeshDefect::NotClosed { .. } | MeshDefect::InsideOut { .. } => {
+                format!("{} is {defect}", p.display())
+            }
+            _ => format!("{} is not a valid solid: {defect}", p.display()),
+        },
     }
 }

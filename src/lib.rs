@@ -69,10 +69,11 @@ mod mesh;
 mod polygon;
 mod primitives;
 mod sdf;
+mod sketch;
 mod solid;
 mod topology;
 
-pub use error::{Error, Result};
+pub use error::{Error, MeshDefect, Result};
 pub use geom::{Aabb, MAX_COORDINATE, Plane, Side, Tolerance};
 pub use io::{
     Format, ParseFormatError, read_mesh, read_mesh_as, read_solid, write_mesh, write_mesh_as,
@@ -85,6 +86,7 @@ pub use sdf::{
     MAX_POLYGON_POINTS, MAX_REFINE_STEPS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene,
     TessellationOptions,
 };
+pub use sketch::{ExtrudeOptions, FillRule, Region, Sketch, SketchReport, TWIST_DEGREES_PER_SLICE};
 pub use solid::{BoolOp, Containment, PointClassifier, Solid, boolean, boolean_all};
 
 pub use glam;

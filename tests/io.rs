@@ -9,7 +9,8 @@ use std::path::{Path, PathBuf};
 
 use base64::Engine as _;
 use bspcsg::{
-    Error, Format, Material, Mesh, Solid, read_mesh, read_mesh_as, write_mesh, write_mesh_as,
+    Error, Format, Material, Mesh, MeshDefect, Solid, read_mesh, read_mesh_as, write_mesh,
+    write_mesh_as,
 };
 use common::models;
 use glam::DVec3;
@@ -573,12 +574,21 @@ fn failed_writes_leave_nothing_behind() {
     bad.positions[0].x = 1e300; // beyond float32
     assert!(matches!(
         write_mesh(&p, &bad, &[]),
-        Err(Error::InvalidMesh(_))
+        Err(Error::InvalidMesh {
+            defect: MeshDefect::TooLargeForFormat { .. },
+            ..
+        })
     ));
     bad.triangles[0][0] = u32::MAX;
     assert!(matches!(
         write_mesh(&p, &bad, &[]),
-        Err(Error::InvalidMesh(_))
+        Err(Error::InvalidMesh {
+            defect: MeshDefect::IndexOutOfRange {
+                index: u32::MAX,
+                ..
+            },
+            ..
+        })
     ));
     let bad_colour = [Material {
         name: "x".into(),
@@ -674,4 +684,69 @@ fn khronos_validator_accepts_written_gltf() {
     println!("{stdout}{}", String::from_utf8_lossy(&out.stderr));
     assert!(out.status.success(), "validator reported errors:\n{stdout}");
     assert_eq!(stdout.matches(": 0 errors").count(), files.len());
+}
+
+/// An L-shaped prism as Blender writes it: two concave hexagonal caps and six quads. Each cap
+/// starts at a corner that does not see the whole face, so fanning it (what tobj did) folds a
+/// triangle outside the L: area 15 instead of 14.
+const L_PRISM_OBJ: &str = "\
+# L-shaped prism: [0,2]x[0,1] ∪ [0,1]x[0,2], z in [0,1]
+v 0 0 0
+v 2 0 0
+v 2 1 0
+v 1 1 0
+v 1 2 0
+v 0 2 0
+v 0 0 1
+v 2 0 1
+v 2 1 1
+v 1 1 1
+v 1 2 1
+v 0 2 1
+f 8 9 10 11 12 7
+f 2 1 6 5 4 3
+f 1 2 8 7
+f 2 3 9 8
+f 3 4 10 9
+f 4 5 11 10
+f 5 6 12 11
+f 6 1 7 12
+";
+
+#[test]
+fn obj_concave_ngon_caps_keep_their_area() {
+    let dir = scratch("l_prism");
+    let path = dir.join("l_prism.obj");
+    fs::write(&path, L_PRISM_OBJ).unwrap();
+    let mesh = read_mesh(&path).unwrap();
+    assert!((mesh.area() - 14.0).abs() < 1e-12, "area {}", mesh.area());
+    assert!(
+        (mesh.volume() - 3.0).abs() < 1e-12,
+        "volume {}",
+        mesh.volume()
+    );
+    let report = mesh.report();
+    assert!(report.is_closed_manifold(), "{report}");
+    assert_eq!(report.genus, Some(0));
+
+    // Booleans with it are exact: filling the notch gives the 2×2×1 box, cutting a unit
+    // corner away leaves two unit cubes' worth.
+    let l = Solid::from_mesh(&mesh).unwrap();
+    let notch = Solid::cube(1.0)
+        .unwrap()
+        .translate(DVec3::new(1.5, 1.5, 0.5))
+        .unwrap();
+    let corner = Solid::cube(1.0)
+        .unwrap()
+        .translate(DVec3::splat(0.5))
+        .unwrap();
+    let filled = (&l | &notch).to_mesh();
+    assert!(filled.report().is_closed_manifold());
+    assert!((filled.volume() - 4.0).abs() < 1e-12, "{}", filled.volume());
+    assert!((filled.area() - 16.0).abs() < 1e-12, "{}", filled.area());
+    let cut = (&l - &corner).to_mesh();
+    assert!(cut.report().is_closed_manifold());
+    assert!((cut.volume() - 2.0).abs() < 1e-12, "{}", cut.volume());
+    assert!((cut.area() - 12.0).abs() < 1e-12, "{}", cut.area());
+    fs::remove_dir_all(&dir).unwrap();
 }

@@ -5,7 +5,7 @@ mod common;
 use std::collections::HashMap;
 
 use approx::assert_relative_eq;
-use bspcsg::{Error, FromMeshOptions, Mesh, MeshReport, Solid};
+use bspcsg::{Error, FromMeshOptions, Mesh, MeshDefect, MeshReport, Solid};
 use common::models;
 use glam::DVec3;
 
@@ -337,7 +337,7 @@ fn from_mesh_keeps_sources() {
 
 fn invalid_message(r: bspcsg::Result<Solid>) -> String {
     match r {
-        Err(Error::InvalidMesh(m)) => m,
+        Err(Error::InvalidMesh { path: None, defect }) => defect.to_string(),
         other => panic!("expected InvalidMesh, got {other:?}"),
     }
 }
@@ -701,4 +701,71 @@ fn merge_on_bad_models_is_lenient_too() {
         assert!(back.polygon_count() <= plain.polygon_count());
         assert_relative_eq!(back.volume(), plain.volume(), max_relative = 1e-12);
     }
+}
+
+/// Callers match on the kind of defect, not on message text; the file, where there is one,
+/// rides beside it.
+#[test]
+fn mesh_defects_are_structured() {
+    let mut open = cube_mesh();
+    open.triangles.pop();
+    open.sources.pop();
+    let e = Solid::from_mesh(&open).unwrap_err();
+    assert_eq!(
+        e.mesh_defect(),
+        Some(&MeshDefect::NotClosed {
+            boundary_edges: 3,
+            non_manifold_edges: 0,
+            inconsistent_edges: 0,
+            edges: 18,
+        })
+    );
+    let inverted = Mesh::new(
+        cube_mesh().positions,
+        cube_mesh()
+            .triangles
+            .iter()
+            .map(|&[a, b, c]| [a, c, b])
+            .collect(),
+    );
+    assert_eq!(
+        Solid::from_mesh(&inverted).unwrap_err().mesh_defect(),
+        Some(&MeshDefect::InsideOut {
+            inverted_shells: 1,
+            shells: 1
+        })
+    );
+    let v = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+    let far = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z * 1e200];
+    let tetra_faces = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+    assert!(matches!(
+        Solid::polyhedron(&far, &tetra_faces).unwrap_err().mesh_defect(),
+        Some(MeshDefect::BeyondRange { vertices: 1, first: 3, limit, .. })
+            if *limit == bspcsg::MAX_COORDINATE
+    ));
+    assert_eq!(
+        Solid::polyhedron(&v, &[[0u32; 0]; 0])
+            .unwrap_err()
+            .mesh_defect(),
+        Some(&MeshDefect::NoFaces)
+    );
+
+    // read_solid names the file beside the same defect.
+    let dir = std::env::temp_dir().join(format!("bspcsg-defects-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("open.stl");
+    bspcsg::write_mesh(&path, &open, &[]).unwrap();
+    let e = bspcsg::read_solid(&path, &FromMeshOptions::default()).unwrap_err();
+    match &e {
+        Error::InvalidMesh {
+            path: Some(p),
+            defect: MeshDefect::NotClosed { boundary_edges, .. },
+        } => {
+            assert_eq!(p, &path);
+            assert!(*boundary_edges > 0);
+        }
+        other => panic!("expected a NotClosed defect with the path, got {other:?}"),
+    }
+    assert!(e.to_string().contains("open.stl is not closed: "), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
 }

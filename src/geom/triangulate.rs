@@ -38,12 +38,37 @@ pub(crate) fn triangulate_boundary(
     ids.sort_unstable();
     ids.dedup();
     let local: FxHashMap<u32, usize> = ids.iter().enumerate().map(|(k, &i)| (i, k)).collect();
+    let vertices = spade_points(positions, &ids, normal)?;
+    let constraint_list: Vec<[usize; 2]> =
+        edges.iter().map(|&(a, b)| [local[&a], local[&b]]).collect();
+    let mut conflicts = 0usize;
+    let cdt: Cdt = ConstrainedDelaunayTriangulation::try_bulk_load_cdt(
+        vertices,
+        constraint_list.clone(),
+        |_| conflicts += 1,
+    )
+    .ok()?;
+    if conflicts > 0 || cdt.num_vertices() != ids.len() {
+        return None;
+    }
+    let label = inside_faces(&cdt, &constraint_list)?;
+    let triangles = cdt
+        .inner_faces()
+        .filter(|f| label[f.fix().index()] == 1)
+        .map(|f| f.vertices().map(|v| ids[v.fix().index()]))
+        .collect();
+    Some(triangles)
+}
+
+type Cdt = ConstrainedDelaunayTriangulation<Point2<f64>>;
+
+/// The points `ids` projected onto the plane of `normal`, for spade. spade accepts magnitudes
+/// up to 2^201 and decides orientation exactly on the values it is given. Scale by a power of
+/// two (exact) into its range and do not shift: a shift would round away detail that is tiny
+/// beside the region's extent (a 2-wide hole in a 10^38-wide face).
+fn spade_points(positions: &[DVec3], ids: &[u32], normal: DVec3) -> Option<Vec<Point2<f64>>> {
     let pts3: Vec<DVec3> = ids.iter().map(|&i| positions[i as usize]).collect();
     let pts2 = project(&pts3, normal);
-    // spade accepts magnitudes up to 2^201 and decides orientation exactly on the values it is
-    // given. Scale by a power of two (exact) into its range and do not shift: a shift would
-    // round away detail that is tiny beside the region's extent (a 2-wide hole in a 10^38-wide
-    // face).
     let reach = pts2
         .iter()
         .map(|p| p.abs().max_element())
@@ -52,32 +77,24 @@ pub(crate) fn triangulate_boundary(
         return None;
     }
     let scale = crate::geom::unit_scale(reach);
-    let vertices: Vec<Point2<f64>> = pts2
-        .iter()
-        .map(|p| {
-            let q = *p * scale;
-            spade::mitigate_underflow(Point2::new(q.x, q.y))
-        })
-        .collect();
-    let constraint_list: Vec<[usize; 2]> =
-        edges.iter().map(|&(a, b)| [local[&a], local[&b]]).collect();
-    let mut conflicts = 0usize;
-    let cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
-        ConstrainedDelaunayTriangulation::try_bulk_load_cdt(
-            vertices,
-            constraint_list.clone(),
-            |_| conflicts += 1,
-        )
-        .ok()?;
-    if conflicts > 0 || cdt.num_vertices() != ids.len() {
-        return None;
-    }
-    // Faces left of a boundary edge are inside, right of it outside; the rest take the label
-    // of a neighbour across a non-boundary edge.
+    Some(
+        pts2.iter()
+            .map(|p| {
+                let q = *p * scale;
+                spade::mitigate_underflow(Point2::new(q.x, q.y))
+            })
+            .collect(),
+    )
+}
+
+/// Per face of `cdt`: 1 inside the region, -1 outside, 0 unreached. Faces left of a boundary
+/// edge are inside, right of it outside; the rest take the label of a neighbour across a
+/// non-boundary edge. `None` when a face lies left of one edge and right of another.
+fn inside_faces(cdt: &Cdt, constraints: &[[usize; 2]]) -> Option<Vec<i8>> {
     let mut label: Vec<i8> = vec![0; cdt.num_all_faces()];
     let mut queue = Vec::new();
     let handles: Vec<_> = cdt.fixed_vertices().collect();
-    for [a, b] in constraint_list {
+    for &[a, b] in constraints {
         let edge = cdt.get_edge_from_neighbors(handles[a], handles[b])?;
         for (face, value) in [(edge.face(), 1i8), (edge.rev().face(), -1i8)] {
             if let Some(inner) = face.as_inner() {
@@ -106,12 +123,7 @@ pub(crate) fn triangulate_boundary(
             }
         }
     }
-    let triangles = cdt
-        .inner_faces()
-        .filter(|f| label[f.fix().index()] == 1)
-        .map(|f| f.vertices().map(|v| ids[v.fix().index()]))
-        .collect();
-    Some(triangles)
+    Some(label)
 }
 
 /// Regions whose boundary is one loop of at most this many edges are ear-clipped.

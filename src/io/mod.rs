@@ -11,9 +11,10 @@ use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use crate::error::{Error, Result};
+use crate::error::{Error, MeshDefect, Result};
 use crate::mesh::{FromMeshOptions, Material, Mesh};
 use crate::solid::Solid;
+use crate::topology::check_face_indices;
 
 mod gltf;
 mod obj;
@@ -171,18 +172,16 @@ pub fn read_mesh_as(path: &Path, format: Format) -> Result<Mesh> {
 ///
 /// # Errors
 ///
-/// As [`read_mesh`] for the file itself, and [`Error::InvalidMesh`], whose message starts with
-/// the path, when the mesh does not bound a solid.
+/// As [`read_mesh`] for the file itself, and [`Error::InvalidMesh`] with the path and the
+/// [`MeshDefect`](crate::MeshDefect) when the mesh does not bound a solid.
 pub fn read_solid(path: &Path, options: &FromMeshOptions) -> Result<Solid> {
     let mesh = read_mesh(path)?;
     Solid::from_mesh_with(&mesh, options).map_err(|e| match e {
         // "x.obj is not closed: …", "x.obj is inside out: …", else "is not a valid solid".
-        Error::InvalidMesh(m) if m.starts_with("not closed") || m.starts_with("inside out") => {
-            Error::InvalidMesh(format!("{} is {m}", path.display()))
-        }
-        Error::InvalidMesh(m) => {
-            Error::InvalidMesh(format!("{} is not a valid solid: {m}", path.display()))
-        }
+        Error::InvalidMesh { path: None, defect } => Error::InvalidMesh {
+            path: Some(path.to_path_buf()),
+            defect,
+        },
         other => other,
     })
 }
@@ -285,32 +284,29 @@ pub(crate) fn parse_error(path: &Path, line: Option<usize>, message: impl Into<S
 /// float32, that overflow it.
 fn check_mesh(mesh: &Mesh, float32: bool) -> Result<()> {
     if mesh.sources.len() != mesh.triangles.len() {
-        return Err(Error::InvalidMesh(format!(
-            "{} triangles but {} source ids",
-            mesh.triangles.len(),
-            mesh.sources.len()
-        )));
+        return Err(Error::mesh(MeshDefect::SourceCount {
+            sources: mesh.sources.len(),
+            triangles: mesh.triangles.len(),
+        }));
     }
     let n = mesh.positions.len();
     // All positions, used or not: OBJ writes every one.
-    if let Some(i) = mesh.positions.iter().position(|p| !p.is_finite()) {
-        return Err(Error::InvalidMesh(format!(
-            "vertex {i} is not finite: {}",
-            mesh.positions[i]
-        )));
+    let non_finite = mesh.positions.iter().filter(|p| !p.is_finite()).count();
+    if let Some(first) = mesh.positions.iter().position(|p| !p.is_finite()) {
+        return Err(Error::mesh(MeshDefect::NonFinite {
+            vertices: non_finite,
+            first,
+            position: mesh.positions[first],
+        }));
     }
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        for &i in tri {
-            let Some(&p) = mesh.positions.get(i as usize) else {
-                return Err(Error::InvalidMesh(format!(
-                    "triangle {t} refers to vertex {i}, but there are {n} vertices"
-                )));
-            };
-            if float32 && !p.as_vec3().is_finite() {
-                return Err(Error::InvalidMesh(format!(
-                    "vertex {i} = {p} is beyond the float32 range this format stores"
-                )));
-            }
+    check_face_indices(&mesh.triangles, n, true)?;
+    for &i in mesh.triangles.iter().flatten() {
+        let p = mesh.positions[i as usize];
+        if float32 && !p.as_vec3().is_finite() {
+            return Err(Error::mesh(MeshDefect::TooLargeForFormat {
+                format: "float32 coordinates",
+                detail: format!("vertex {i} = {p} is beyond ±{:e}", f32::MAX),
+            }));
         }
     }
     Ok(())

@@ -1,11 +1,17 @@
 //! Wavefront OBJ: positions and faces in, positions, faces and materials (`.mtl`) out.
 //!
-//! Reading runs in two steps. A pre-pass over the text checks every `v` and `f` line (so
-//! errors name their line, which tobj's do not), resolves relative indices, and hands tobj a
-//! reduced text of positions and position-only faces; tobj then triangulates. The reduction
-//! is what keeps UV and normal seams from splitting vertices, and it also keeps tobj 4.0.5
-//! away from texture-coordinate and normal indices, whose arithmetic overflows (a panic in
-//! debug builds) on out-of-range relative indices.
+//! Reading parses the text once: `v` lines give positions, `f` lines faces of position indices
+//! (texture and normal indices are ignored, so UV and normal seams do not split vertices), and
+//! every fault names its line. Positions are welded bit for bit in the order faces first use
+//! them. Faces are triangulated here:
+//!
+//! - a triangle, or a face that is strictly convex about its Newell normal, is fanned from its
+//!   first corner;
+//! - any other face (a concave n-gon such as the L-shaped cap Blender writes, or a face with
+//!   collinear corners) is triangulated by the crate's constrained Delaunay triangulation in
+//!   the plane of its Newell normal, so concave faces keep their area;
+//! - a face that is not a simple polygon in that plane (self-intersecting, or non-planar
+//!   enough to fold over) is fanned from its first corner, as most readers do.
 
 use std::collections::{BTreeMap, HashSet};
 use std::fmt::Write as _;
@@ -16,159 +22,211 @@ use glam::DVec3;
 use super::{
     DEFAULT_MATERIAL_COLOR, DEFAULT_MATERIAL_NAME, Files, OutFile, generator, parse_error,
 };
-use crate::error::Result;
+use crate::error::{Error, Result};
+use crate::geom::Plane;
+use crate::geom::triangulate::triangulate_boundary;
 use crate::mesh::weld::Welder;
 use crate::mesh::{Material, Mesh};
 
 /// Reads OBJ text.
 pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh> {
-    let reduced = reduce(path, bytes)?;
-    let options = tobj::LoadOptions {
-        single_index: false,
-        triangulate: true,
-        ignore_points: true,
-        ignore_lines: true,
-    };
-    // The reduced text has no `mtllib` lines, so the material loader is never called.
-    let (models, _) = tobj::load_obj_buf(&mut reduced.as_bytes(), &options, |_| {
-        Err(tobj::LoadError::GenericFailure)
-    })
-    .map_err(|e| parse_error(path, None, format!("OBJ parser: {e}")))?;
-
-    let n: usize = models.iter().map(|m| m.mesh.indices.len()).sum();
-    let mut welder = Welder::with_capacity(n / 2);
-    let mut triangles = Vec::with_capacity(n / 3);
-    for model in &models {
-        let m = &model.mesh;
-        let local: Vec<u32> = m
-            .positions
-            .chunks_exact(3)
-            .map(|c| welder.index(DVec3::new(c[0], c[1], c[2])))
-            .collect();
-        for t in m.indices.chunks_exact(3) {
-            let mut tri = [0u32; 3];
-            for (k, &i) in t.iter().enumerate() {
-                tri[k] = *local.get(i as usize).ok_or_else(|| {
-                    parse_error(path, None, "OBJ parser returned an index out of range")
-                })?;
+    let parsed = Parsed::read(path, bytes)?;
+    // Weld in the order faces first use positions; unused positions are dropped.
+    let mut welder = Welder::with_capacity(parsed.positions.len());
+    let mut id = vec![u32::MAX; parsed.positions.len()];
+    let mut triangles = Vec::with_capacity(parsed.indices.len());
+    let mut face: Vec<u32> = Vec::new();
+    for range in &parsed.faces {
+        face.clear();
+        for &i in &parsed.indices[range.clone()] {
+            let slot = &mut id[i as usize];
+            if *slot == u32::MAX {
+                *slot = welder.index(parsed.positions[i as usize]);
             }
-            // A face that repeats a vertex (after welding) has no area and no edges of its own.
-            if tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2] {
-                triangles.push(tri);
-            }
+            face.push(*slot);
         }
+        triangulate_face(&welder.positions, &face, &mut triangles);
     }
     Ok(Mesh::new(welder.positions, triangles))
 }
 
-/// Checks the `v` and `f` lines and returns the text tobj gets: `v x y z` lines with the
-/// coordinates printed losslessly, `f` lines of absolute 1-based position indices, and an empty
-/// line for every other line (so tobj's line count matches the file's).
-fn reduce(path: &Path, bytes: &[u8]) -> Result<String> {
-    let mut out = String::with_capacity(bytes.len() / 2);
-    let mut vertices: usize = 0;
-    let mut faces: usize = 0;
-    // Positive indices past the vertices read so far: allowed if the file defines them later.
-    let mut forward: Vec<(usize, i64)> = Vec::new();
-    for (n, raw) in bytes.split(|&b| b == b'\n').enumerate() {
-        let line_no = n + 1;
-        let err = |message: String| parse_error(path, Some(line_no), message);
-        // Comments and names may be in any encoding; only `v` and `f` lines must be ASCII.
-        let line = String::from_utf8_lossy(raw);
-        // A `#` starts a comment, also after data (`v 1 2 3 # corner`).
-        let data = line.split_once('#').map_or(&*line, |(d, _)| d);
-        let mut words = data.split_whitespace();
-        match words.next() {
-            Some("v") => {
-                let mut c = [0.0f64; 4];
-                let mut count = 0;
-                for w in words {
-                    let x: f64 = w
-                        .parse()
-                        .map_err(|_| err(format!("vertex coordinate `{w}` is not a number")))?;
-                    if count < 4 {
-                        c[count] = x;
-                    }
-                    count += 1;
-                }
-                if count < 3 {
-                    return Err(err(format!(
-                        "vertex has {count} coordinates, needs 3 (x y z)"
-                    )));
-                }
-                let mut p = DVec3::new(c[0], c[1], c[2]);
-                // Exactly four numbers are x y z w; six are x y z r g b (colours are ignored).
-                if count == 4 {
-                    let w = c[3];
-                    if w == 0.0 || !w.is_finite() {
-                        return Err(err(format!("vertex weight w = {w} is not usable")));
-                    }
-                    p /= w;
-                }
-                if !p.is_finite() {
-                    return Err(err(format!(
-                        "vertex coordinates ({}, {}, {}) are not all finite",
-                        p.x, p.y, p.z
-                    )));
-                }
-                vertices += 1;
-                // `{}` prints the shortest text that parses back to the same f64.
-                let _ = writeln!(out, "v {} {} {}", p.x, p.y, p.z);
+/// Appends the triangles of one face (welded vertex ids), dropping those that repeat a vertex:
+/// they have no area and no edges of their own.
+fn triangulate_face(positions: &[DVec3], face: &[u32], out: &mut Vec<[u32; 3]>) {
+    let mut push = |t: [u32; 3]| {
+        if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+            out.push(t);
+        }
+    };
+    let fan = |push: &mut dyn FnMut([u32; 3])| {
+        for k in 1..face.len() - 1 {
+            push([face[0], face[k], face[k + 1]]);
+        }
+    };
+    if face.len() == 3 {
+        fan(&mut push);
+        return;
+    }
+    let points: Vec<DVec3> = face.iter().map(|&i| positions[i as usize]).collect();
+    let Some(plane) = Plane::from_points(&points) else {
+        fan(&mut push);
+        return;
+    };
+    if strictly_convex(&points, plane.normal) {
+        fan(&mut push);
+        return;
+    }
+    let n = face.len() as u32;
+    let edges: Vec<(u32, u32)> = (0..n).map(|k| (k, (k + 1) % n)).collect();
+    match triangulate_boundary(&points, plane.normal, &edges) {
+        Some(tris) if !tris.is_empty() => {
+            for t in tris {
+                push(t.map(|k| face[k as usize]));
             }
-            Some("f") => {
-                out.push('f');
-                let mut corners = 0;
-                for w in words {
-                    // `v`, `v/vt`, `v//vn` or `v/vt/vn`: only the position index matters here.
-                    let v = w.split('/').next().unwrap_or(w);
-                    let i: i64 = v
-                        .parse()
-                        .map_err(|_| err(format!("face vertex `{w}` is not an index")))?;
-                    let abs = if i > 0 {
-                        if i as u64 > vertices as u64 {
-                            forward.push((line_no, i));
+        }
+        _ => fan(&mut push),
+    }
+}
+
+/// Every corner turns left about `normal`: fanning from any corner covers the face exactly.
+fn strictly_convex(points: &[DVec3], normal: DVec3) -> bool {
+    let n = points.len();
+    (0..n).all(|i| {
+        let (a, b, c) = (points[i], points[(i + 1) % n], points[(i + 2) % n]);
+        (b - a).cross(c - b).dot(normal) > 0.0
+    })
+}
+
+/// The positions and faces of an OBJ file, indices absolute and 0-based.
+struct Parsed {
+    positions: Vec<DVec3>,
+    /// Every face's position indices, one after another.
+    indices: Vec<u32>,
+    /// Each face's range in `indices`.
+    faces: Vec<std::ops::Range<usize>>,
+}
+
+impl Parsed {
+    /// Parses and checks the `v` and `f` lines; other lines are ignored.
+    fn read(path: &Path, bytes: &[u8]) -> Result<Parsed> {
+        let mut parsed = Parsed {
+            positions: Vec::new(),
+            indices: Vec::new(),
+            faces: Vec::new(),
+        };
+        // Positive indices past the vertices read so far: allowed if the file defines them later.
+        let mut forward: Vec<(usize, i64)> = Vec::new();
+        for (n, raw) in bytes.split(|&b| b == b'\n').enumerate() {
+            let line_no = n + 1;
+            let err = |message: String| parse_error(path, Some(line_no), message);
+            // Comments and names may be in any encoding; only `v` and `f` lines must be ASCII.
+            let line = String::from_utf8_lossy(raw);
+            // A `#` starts a comment, also after data (`v 1 2 3 # corner`).
+            let data = line.split_once('#').map_or(&*line, |(d, _)| d);
+            let mut words = data.split_whitespace();
+            match words.next() {
+                Some("v") => parsed.positions.push(vertex(words, &err)?),
+                Some("f") => {
+                    let start = parsed.indices.len();
+                    for w in words {
+                        let i = parsed.face_index(w, &err)?;
+                        if i as u64 >= parsed.positions.len() as u64 {
+                            forward.push((line_no, i + 1));
                         }
-                        i
-                    } else if i < 0 {
-                        let abs = vertices as i64 + i + 1;
-                        if abs < 1 {
-                            return Err(err(format!(
-                                "relative vertex index {i} reaches before the first vertex \
-                                 ({vertices} vertices precede this line)"
-                            )));
-                        }
-                        abs
-                    } else {
-                        return Err(err(
-                            "vertex index 0 in a face: OBJ indices start at 1".into()
-                        ));
-                    };
-                    let _ = write!(out, " {abs}");
-                    corners += 1;
+                        // Beyond u32 only as a forward reference, refused below.
+                        parsed.indices.push(u32::try_from(i).unwrap_or(u32::MAX));
+                    }
+                    let corners = parsed.indices.len() - start;
+                    if corners < 3 {
+                        return Err(err(format!(
+                            "face has {corners} vertices, needs at least 3"
+                        )));
+                    }
+                    parsed.faces.push(start..parsed.indices.len());
                 }
-                if corners < 3 {
-                    return Err(err(format!(
-                        "face has {corners} vertices, needs at least 3"
-                    )));
-                }
-                out.push('\n');
-                faces += 1;
+                // Texture coordinates, normals, groups, materials, lines, points, comments …
+                _ => {}
             }
-            // Texture coordinates, normals, groups, materials, lines, points, comments …
-            _ => out.push('\n'),
+        }
+        let vertices = parsed.positions.len();
+        if let Some(&(line, i)) = forward.iter().find(|&&(_, i)| i as u64 > vertices as u64) {
+            return Err(parse_error(
+                path,
+                Some(line),
+                format!("vertex index {i} is out of range: the file has {vertices} vertices"),
+            ));
+        }
+        if parsed.faces.is_empty() {
+            return Err(parse_error(path, None, "the file holds no faces"));
+        }
+        Ok(parsed)
+    }
+
+    /// The 0-based position index of a face corner `v`, `v/vt`, `v//vn` or `v/vt/vn` (only the
+    /// position matters here); relative indices count back from the vertices read so far.
+    fn face_index(&self, w: &str, err: &dyn Fn(String) -> Error) -> Result<i64> {
+        let v = w.split('/').next().unwrap_or(w);
+        let i: i64 = v
+            .parse()
+            .map_err(|_| err(format!("face vertex `{w}` is not an index")))?;
+        let vertices = self.positions.len() as i64;
+        if i > 0 {
+            Ok(i - 1)
+        } else if i < 0 {
+            let abs = vertices + i + 1;
+            if abs < 1 {
+                return Err(err(format!(
+                    "relative vertex index {i} reaches before the first vertex ({vertices} \
+                     vertices precede this line)"
+                )));
+            }
+            Ok(abs - 1)
+        } else {
+            Err(err(
+                "vertex index 0 in a face: OBJ indices start at 1".into()
+            ))
         }
     }
-    if let Some(&(line, i)) = forward.iter().find(|&&(_, i)| i as u64 > vertices as u64) {
-        return Err(parse_error(
-            path,
-            Some(line),
-            format!("vertex index {i} is out of range: the file has {vertices} vertices"),
-        ));
+}
+
+/// A `v` line's position: `x y z`, `x y z w` (divided by `w`) or `x y z r g b` (colours are
+/// ignored); finite.
+fn vertex<'a>(
+    words: impl Iterator<Item = &'a str>,
+    err: &dyn Fn(String) -> Error,
+) -> Result<DVec3> {
+    let mut c = [0.0f64; 4];
+    let mut count = 0;
+    for w in words {
+        let x: f64 = w
+            .parse()
+            .map_err(|_| err(format!("vertex coordinate `{w}` is not a number")))?;
+        if count < 4 {
+            c[count] = x;
+        }
+        count += 1;
     }
-    if faces == 0 {
-        return Err(parse_error(path, None, "the file holds no faces"));
+    if count < 3 {
+        return Err(err(format!(
+            "vertex has {count} coordinates, needs 3 (x y z)"
+        )));
     }
-    Ok(out)
+    let mut p = DVec3::new(c[0], c[1], c[2]);
+    // Exactly four numbers are x y z w; six are x y z r g b (colours are ignored).
+    if count == 4 {
+        let w = c[3];
+        if w == 0.0 || !w.is_finite() {
+            return Err(err(format!("vertex weight w = {w} is not usable")));
+        }
+        p /= w;
+    }
+    if !p.is_finite() {
+        return Err(err(format!(
+            "vertex coordinates ({}, {}, {}) are not all finite",
+            p.x, p.y, p.z
+        )));
+    }
+    Ok(p)
 }
 
 /// Writes OBJ text, and a sibling `.mtl` when `materials` is not empty.
@@ -279,7 +337,6 @@ fn material_names(materials: &[Material]) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::error::Error;
 
     fn parse(text: &str) -> Result<Mesh> {
         read(Path::new("t.obj"), text.as_bytes())
@@ -349,7 +406,7 @@ mod tests {
 
     #[test]
     fn huge_relative_texture_indices_do_not_panic() {
-        // tobj computes `vt * 2 + 1` on the wrapped index; the reduction never shows it one.
+        // Texture indices are never read, however far out of range.
         let m = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/-9 2/-9 3/-9223372036854775807\n")
             .unwrap();
         assert_eq!(m.triangle_count(), 1);

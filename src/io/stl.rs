@@ -9,7 +9,7 @@ use std::path::Path;
 use glam::{DVec3, Vec3};
 
 use super::{Files, parse_error};
-use crate::error::{Error, Result};
+use crate::error::{Error, MeshDefect, Result};
 use crate::mesh::Mesh;
 use crate::mesh::weld::Welder;
 
@@ -242,11 +242,14 @@ fn parse_numbers<'a>(
 /// Writes binary STL: float32 coordinates and per-triangle normals from the winding.
 pub(crate) fn write(mesh: &Mesh) -> Result<Files> {
     let n = u32::try_from(mesh.triangles.len()).map_err(|_| {
-        Error::InvalidMesh(format!(
-            "{} triangles; binary STL holds at most {}",
-            mesh.triangles.len(),
-            u32::MAX
-        ))
+        Error::mesh(MeshDefect::TooLargeForFormat {
+            format: "binary STL",
+            detail: format!(
+                "{} triangles; it holds at most {}",
+                mesh.triangles.len(),
+                u32::MAX
+            ),
+        })
     })?;
     let mut out = Vec::with_capacity(HEADER + 4 + RECORD * mesh.triangles.len());
     // The header must not start with "solid", or readers that go by the prefix take the file

@@ -2,7 +2,7 @@
 //! merged into the convex polygons `Solid::from_mesh` is made of.
 
 use super::Mesh;
-use crate::error::{Error, Result};
+use crate::error::{Error, MeshDefect, Result};
 use crate::geom::is_zero_area;
 use crate::hash::{FxBuild, FxHashMap};
 use crate::polygon::{Polygon, Vertices};
@@ -66,11 +66,10 @@ impl FromMeshOptions {
 /// (the rules are documented on `Solid::from_mesh_with`).
 pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Result<Vec<Polygon>> {
     if mesh.sources.len() != mesh.triangles.len() {
-        return Err(Error::InvalidMesh(format!(
-            "{} source ids for {} triangles; there must be one per triangle",
-            mesh.sources.len(),
-            mesh.triangles.len()
-        )));
+        return Err(Error::mesh(MeshDefect::SourceCount {
+            sources: mesh.sources.len(),
+            triangles: mesh.triangles.len(),
+        }));
     }
     check_face_indices(
         &mesh.triangles,
@@ -86,12 +85,10 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
         check_closed(&mesh.triangles)?;
         let report = mesh.report();
         if report.inverted_shells > 0 {
-            return Err(Error::InvalidMesh(format!(
-                "inside out: {} of {} shells enclose no positive volume and are not \
-                 cavities (faces must wind counter-clockwise seen from outside)",
-                report.inverted_shells,
-                report.shells.len()
-            )));
+            return Err(Error::mesh(MeshDefect::InsideOut {
+                inverted_shells: report.inverted_shells,
+                shells: report.shells.len(),
+            }));
         }
     }
     // One polygon per triangle of non-zero area. Repeated indices were refused or have
@@ -127,110 +124,150 @@ const STRICTLY_CONVEX: f64 = 1e-12;
 /// The ring is a linked list over vertex indices (`next`, `prev`), and `stamp` marks the
 /// vertices of the current ring, so each polygon costs time linear in its size.
 fn merge_coplanar(mesh: &Mesh, triangles: &[Option<Polygon>]) -> Vec<Polygon> {
-    const MANY: usize = usize::MAX;
-    const UNSET: u32 = u32::MAX;
-    let (tris, pos) = (&mesh.triangles, &mesh.positions);
-    let bbox = mesh.bbox();
-    let tol = (1e-12 * bbox.diagonal()).max(64.0 * f64::EPSILON * bbox.max_abs());
-
-    // Directed edge -> the one triangle that runs along it, or MANY.
-    let mut owner: FxHashMap<(u32, u32), usize> =
-        FxHashMap::with_capacity_and_hasher(3 * tris.len(), FxBuild::default());
-    for (t, tri) in tris
-        .iter()
-        .enumerate()
-        .filter(|(t, _)| triangles[*t].is_some())
-    {
-        for k in 0..3 {
-            owner
-                .entry((tri[k], tri[(k + 1) % 3]))
-                .and_modify(|o| *o = MANY)
-                .or_insert(t);
-        }
-    }
-    // The triangle across directed edge u -> v, if the edge is used once each way.
-    let across = |u: u32, v: u32| -> Option<usize> {
-        match (owner.get(&(u, v)), owner.get(&(v, u))) {
-            (Some(&a), Some(&b)) if a != MANY && b != MANY => Some(b),
-            _ => None,
-        }
-    };
-
-    let mut done = vec![false; tris.len()];
-    let mut next = vec![UNSET; pos.len()];
-    let mut prev = vec![UNSET; pos.len()];
-    let mut stamp = vec![usize::MAX; pos.len()];
-    let mut stack: Vec<u32> = Vec::new();
+    let mut merger = Merger::new(mesh, triangles);
     let mut out = Vec::new();
     for (seed, polygon) in triangles.iter().enumerate() {
         let Some(polygon) = polygon else { continue };
-        if done[seed] {
+        if merger.done[seed] {
             continue;
         }
-        done[seed] = true;
-        let plane = *polygon.plane();
-        let p = |i: u32| pos[i as usize];
-        // Strictly convex at b: a left turn about the normal, beyond rounding.
-        let convex = |a: u32, b: u32, c: u32| {
-            let (e, f) = (p(b) - p(a), p(c) - p(b));
-            e.cross(f).dot(plane.normal) > STRICTLY_CONVEX * e.length() * f.length()
-        };
-        let [a, b, c] = tris[seed];
-        for (u, v) in [(a, b), (b, c), (c, a)] {
-            next[u as usize] = v;
-            prev[v as usize] = u;
-            stamp[u as usize] = seed;
+        merger.done[seed] = true;
+        out.push(merger.grow(seed, polygon));
+    }
+    out
+}
+
+/// An edge used by more than one triangle in the same direction.
+const MANY: usize = usize::MAX;
+const UNSET: u32 = u32::MAX;
+
+/// The state of [`merge_coplanar`]: edge ownership, which triangles are taken, and the ring
+/// being grown as a linked list over vertex indices.
+struct Merger<'a> {
+    tris: &'a [[u32; 3]],
+    pos: &'a [glam::DVec3],
+    triangles: &'a [Option<Polygon>],
+    /// How far off the seed's plane a new corner may lie.
+    tol: f64,
+    /// Directed edge -> the one triangle that runs along it, or [`MANY`].
+    owner: FxHashMap<(u32, u32), usize>,
+    done: Vec<bool>,
+    next: Vec<u32>,
+    prev: Vec<u32>,
+    /// The seed whose ring a vertex is on.
+    stamp: Vec<usize>,
+    stack: Vec<u32>,
+}
+
+impl<'a> Merger<'a> {
+    fn new(mesh: &'a Mesh, triangles: &'a [Option<Polygon>]) -> Self {
+        let (tris, pos) = (&mesh.triangles, &mesh.positions);
+        let bbox = mesh.bbox();
+        let tol = (1e-12 * bbox.diagonal()).max(64.0 * f64::EPSILON * bbox.max_abs());
+        let mut owner: FxHashMap<(u32, u32), usize> =
+            FxHashMap::with_capacity_and_hasher(3 * tris.len(), FxBuild::default());
+        for (t, tri) in tris
+            .iter()
+            .enumerate()
+            .filter(|(t, _)| triangles[*t].is_some())
+        {
+            for k in 0..3 {
+                owner
+                    .entry((tri[k], tri[(k + 1) % 3]))
+                    .and_modify(|o| *o = MANY)
+                    .or_insert(t);
+            }
         }
-        stack.clear();
-        stack.extend([a, b, c]);
+        Merger {
+            tris,
+            pos,
+            triangles,
+            tol,
+            owner,
+            done: vec![false; tris.len()],
+            next: vec![UNSET; pos.len()],
+            prev: vec![UNSET; pos.len()],
+            stamp: vec![usize::MAX; pos.len()],
+            stack: Vec::new(),
+        }
+    }
+
+    /// The triangle across directed edge u -> v, if the edge is used once each way.
+    fn across(&self, u: u32, v: u32) -> Option<usize> {
+        match (self.owner.get(&(u, v)), self.owner.get(&(v, u))) {
+            (Some(&a), Some(&b)) if a != MANY && b != MANY => Some(b),
+            _ => None,
+        }
+    }
+
+    fn p(&self, i: u32) -> glam::DVec3 {
+        self.pos[i as usize]
+    }
+
+    /// Strictly convex at b: a left turn about `normal`, beyond rounding.
+    fn convex(&self, normal: glam::DVec3, a: u32, b: u32, c: u32) -> bool {
+        let (e, f) = (self.p(b) - self.p(a), self.p(c) - self.p(b));
+        e.cross(f).dot(normal) > STRICTLY_CONVEX * e.length() * f.length()
+    }
+
+    /// The convex polygon grown from triangle `seed` (whose polygon is `polygon`).
+    fn grow(&mut self, seed: usize, polygon: &Polygon) -> Polygon {
+        let [a, b, c] = self.tris[seed];
+        for (u, v) in [(a, b), (b, c), (c, a)] {
+            self.next[u as usize] = v;
+            self.prev[v as usize] = u;
+            self.stamp[u as usize] = seed;
+        }
+        self.stack.clear();
+        self.stack.extend([a, b, c]);
         let mut corners = 3;
         // Each entry is the start of a ring edge to try; a merge replaces u -> v by
         // u -> w -> v, and both new edges are tried in turn.
-        while let Some(u) = stack.pop() {
-            let v = next[u as usize];
-            let Some(t) = across(u, v) else { continue };
-            let Some(other) = &triangles[t] else { continue };
-            if done[t] || other.source() != polygon.source() {
-                continue;
+        while let Some(u) = self.stack.pop() {
+            if let Some((t, w)) = self.mergeable(seed, polygon, u) {
+                let v = self.next[u as usize];
+                self.next[u as usize] = w;
+                self.prev[w as usize] = u;
+                self.next[w as usize] = v;
+                self.prev[v as usize] = w;
+                self.stamp[w as usize] = seed;
+                self.done[t] = true;
+                corners += 1;
+                self.stack.extend([u, w]);
             }
-            let tri = tris[t];
-            let Some(&w) = tri.iter().find(|&&i| i != u && i != v) else {
-                continue;
-            };
-            if stamp[w as usize] == seed
-                || other.plane().normal.dot(plane.normal) <= 0.0
-                || plane.distance(p(w)).abs() > tol
-                || !convex(prev[u as usize], u, w)
-                || !convex(u, w, v)
-                || !convex(w, v, next[v as usize])
-            {
-                continue;
-            }
-            next[u as usize] = w;
-            prev[w as usize] = u;
-            next[w as usize] = v;
-            prev[v as usize] = w;
-            stamp[w as usize] = seed;
-            done[t] = true;
-            corners += 1;
-            stack.extend([u, w]);
         }
         if corners == 3 {
-            out.push(polygon.clone());
-            continue;
+            return polygon.clone();
         }
         let mut ring = Vertices::with_capacity(corners);
         let mut i = a;
         for _ in 0..corners {
-            ring.push(p(i));
-            i = next[i as usize];
+            ring.push(self.p(i));
+            i = self.next[i as usize];
         }
         // A strictly convex ring of positive area always has a plane; keep the seed's as a
         // fallback that cannot fail.
-        out.push(
-            Polygon::new(ring.clone(), polygon.source())
-                .unwrap_or_else(|| Polygon::with_plane(ring, plane, polygon.source())),
-        );
+        Polygon::new(ring.clone(), polygon.source())
+            .unwrap_or_else(|| Polygon::with_plane(ring, *polygon.plane(), polygon.source()))
     }
-    out
+
+    /// The triangle across ring edge `u -> next[u]` and its third vertex, when taking it in
+    /// keeps the ring of `seed` strictly convex, in its plane and of one source.
+    fn mergeable(&self, seed: usize, polygon: &Polygon, u: u32) -> Option<(usize, u32)> {
+        let plane = polygon.plane();
+        let v = self.next[u as usize];
+        let t = self.across(u, v)?;
+        let other = self.triangles[t].as_ref()?;
+        if self.done[t] || other.source() != polygon.source() {
+            return None;
+        }
+        let w = *self.tris[t].iter().find(|&&i| i != u && i != v)?;
+        let refused = self.stamp[w as usize] == seed
+            || other.plane().normal.dot(plane.normal) <= 0.0
+            || plane.distance(self.p(w)).abs() > self.tol
+            || !self.convex(plane.normal, self.prev[u as usize], u, w)
+            || !self.convex(plane.normal, u, w, v)
+            || !self.convex(plane.normal, w, v, self.next[v as usize]);
+        (!refused).then_some((t, w))
+    }
 }

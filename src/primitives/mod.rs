@@ -40,7 +40,7 @@ pub fn segments_for_tolerance(radius: f64, tolerance: f64) -> Result<u32> {
         return Err(Error::param(
             "tolerance",
             tolerance,
-            "is too fine for this radius (more than 16384 segments)",
+            format!("is too fine for this radius (more than {MAX_SEGMENTS} segments)"),
         ));
     }
     Ok((n as u32).max(MIN_SEGMENTS))
@@ -62,7 +62,7 @@ pub(crate) fn budget(segments: u32, rings: u32) -> Result<()> {
         Err(Error::param(
             "rings",
             rings as f64,
-            "times segments exceeds the 4194304-polygon budget of one primitive",
+            format!("times segments exceeds the {MAX_POLYGONS}-polygon budget of one primitive"),
         ))
     } else {
         Ok(())
@@ -76,7 +76,10 @@ pub(crate) fn positive(name: &'static str, value: f64) -> Result<()> {
         Err(Error::param(
             name,
             value,
-            "is beyond the supported range (at most 1e100)",
+            format!(
+                "is beyond the supported range (at most {:e})",
+                crate::geom::MAX_COORDINATE
+            ),
         ))
     } else {
         Ok(())
@@ -87,7 +90,11 @@ pub(crate) fn count(name: &'static str, value: u32, min: u32) -> Result<()> {
     if value < min {
         Err(Error::param(name, value as f64, "is too small"))
     } else if value > MAX_SEGMENTS {
-        Err(Error::param(name, value as f64, "must be at most 16384"))
+        Err(Error::param(
+            name,
+            value as f64,
+            format!("must be at most {MAX_SEGMENTS}"),
+        ))
     } else {
         Ok(())
     }

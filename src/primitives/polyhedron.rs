@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, MeshDefect, Result};
 use crate::geom::triangulate::triangulate_boundary;
 use crate::geom::{Plane, Tolerance};
 use crate::polygon::Polygon;
@@ -13,7 +13,7 @@ use crate::topology;
 /// caller, on the solid.
 pub(crate) fn polyhedron<F: AsRef<[u32]>>(vertices: &[DVec3], faces: &[F]) -> Result<Vec<Polygon>> {
     if faces.is_empty() {
-        return Err(Error::InvalidMesh("no faces".into()));
+        return Err(Error::mesh(MeshDefect::NoFaces));
     }
     topology::check_finite(vertices, |_| true)?;
     topology::check_face_indices(faces, vertices.len(), false)?;
@@ -22,8 +22,8 @@ pub(crate) fn polyhedron<F: AsRef<[u32]>>(vertices: &[DVec3], faces: &[F]) -> Re
     let mut polygons = Vec::with_capacity(faces.len());
     for (fi, f) in faces.iter().enumerate() {
         let pts: Vec<DVec3> = f.as_ref().iter().map(|&i| vertices[i as usize]).collect();
-        let plane = Plane::from_points(&pts)
-            .ok_or_else(|| Error::InvalidMesh(format!("face {fi} has no area")))?;
+        let plane =
+            Plane::from_points(&pts).ok_or(Error::mesh(MeshDefect::ZeroAreaFace { face: fi }))?;
         if is_planar_convex(&pts, &plane, eps) {
             polygons.push(Polygon::with_plane(pts.as_slice().into(), plane, 0));
             continue;
@@ -32,11 +32,8 @@ pub(crate) fn polyhedron<F: AsRef<[u32]>>(vertices: &[DVec3], faces: &[F]) -> Re
         // of thousands of points is common in extrusions).
         let n = pts.len() as u32;
         let edges: Vec<(u32, u32)> = (0..n).map(|k| (k, (k + 1) % n)).collect();
-        let tris = triangulate_boundary(&pts, plane.normal, &edges).ok_or_else(|| {
-            Error::InvalidMesh(format!(
-                "face {fi} is self-intersecting and cannot be triangulated"
-            ))
-        })?;
+        let tris = triangulate_boundary(&pts, plane.normal, &edges)
+            .ok_or(Error::mesh(MeshDefect::SelfIntersectingFace { face: fi }))?;
         for t in tris {
             // Slivers of a non-convex face may have no plane of their own: they add nothing.
             if let Some(p) = Polygon::new(t.map(|k| pts[k as usize]).as_slice(), 0) {

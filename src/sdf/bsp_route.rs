@@ -46,12 +46,10 @@ impl Scene {
             return Ok(Solid::empty());
         }
         if !(world.min.is_finite() && world.max.is_finite()) {
-            return Err(Error::Scene {
-                file: None,
-                json_path: "$".into(),
-                message: "the scene is unbounded (a half-space not intersected with a bounded \
-                          shape), so it has no solid"
-                    .into(),
+            return Err(Error::Unbounded {
+                what: "the scene",
+                why: "a half-space not intersected with a bounded shape",
+                remedy: "it has no solid; intersect the half-space with a bounded shape",
             });
         }
         let tol = opts.tolerance.unwrap_or(world.diagonal() / 500.0);

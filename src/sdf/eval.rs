@@ -91,6 +91,89 @@ pub(crate) struct Scratch {
     local: Vec<DVec3>,
 }
 
+impl Scratch {
+    /// Combines stack slot `top` into slot `top - 1` for the first `n` points.
+    #[inline]
+    fn combine_top<const MAT: bool>(&mut self, op: Op, top: usize, n: usize) {
+        let (lo, hi) = self.vals.split_at_mut(top * CHUNK);
+        let a = &mut lo[(top - 1) * CHUNK..(top - 1) * CHUNK + n];
+        let b = &hi[..n];
+        if MAT {
+            let (mlo, mhi) = self.mats.split_at_mut(top * CHUNK);
+            let ma = &mut mlo[(top - 1) * CHUNK..(top - 1) * CHUNK + n];
+            let mb = &mhi[..n];
+            for i in 0..n {
+                let (d, m) = combine_material(op, (a[i], ma[i]), (b[i], mb[i]));
+                a[i] = d;
+                ma[i] = m;
+            }
+        } else {
+            combine_slices(op, a, b);
+        }
+    }
+}
+
+impl Leaf {
+    /// A primitive placed by `frame`; refused when the frame cannot be inverted.
+    fn new(shape: &Shape, material: u32, frame: &Frame) -> Result<Leaf> {
+        let to_local = frame.to_world.inverse();
+        if !(to_local.is_finite() && frame.to_world.is_finite()) {
+            return Err(singular());
+        }
+        Ok(Leaf {
+            shape: shape.clone(),
+            to_local,
+            to_world: frame.to_world,
+            identity: frame.to_world == DAffine3::IDENTITY,
+            factor: frame.sigma,
+            condition: frame.condition(),
+            material,
+        })
+    }
+
+    /// World-unit distances at `points` into `dst`, using `local` for the points in the
+    /// primitive's frame.
+    #[inline]
+    fn distances(&self, points: &[DVec3], local: &mut [DVec3], dst: &mut [f64]) {
+        if self.identity {
+            self.shape.distances(points, dst);
+        } else {
+            for (q, &p) in local.iter_mut().zip(points) {
+                *q = self.to_local.transform_point3(p);
+            }
+            self.shape.distances(local, dst);
+        }
+        if self.factor != 1.0 {
+            for d in dst.iter_mut() {
+                *d *= self.factor;
+            }
+        }
+    }
+}
+
+impl Op {
+    /// The instruction of a boolean node in `frame`.
+    fn new(op: BoolKind, smooth: Option<(SmoothKind, f64)>, frame: &Frame) -> Op {
+        match smooth {
+            None => match op {
+                BoolKind::Union => Op::Union,
+                BoolKind::Intersect => Op::Intersect,
+                BoolKind::Subtract => Op::Subtract,
+            },
+            // Smoothing constants to world units (the blends are homogeneous of degree one in
+            // (distance, 1/k) resp. (distance, k)).
+            Some((kind, k)) => Op::Smooth {
+                op,
+                kind,
+                k: match kind {
+                    SmoothKind::Exponential => k / frame.sigma,
+                    SmoothKind::Polynomial => k * frame.sigma,
+                },
+            },
+        }
+    }
+}
+
 impl Program {
     /// Flattens the subtree at `root`, whose parent frame is `parent`.
     pub(crate) fn compile(tree: &Tree, root: NodeId, parent: Frame) -> Result<Program> {
@@ -115,20 +198,8 @@ impl Program {
                     }
                     match &node.kind {
                         NodeKind::Leaf { shape, material } => {
-                            let to_local = frame.to_world.inverse();
-                            if !(to_local.is_finite() && frame.to_world.is_finite()) {
-                                return Err(singular());
-                            }
                             prog.instrs.push(Instr::Leaf(prog.leaves.len() as u32));
-                            prog.leaves.push(Leaf {
-                                shape: shape.clone(),
-                                to_local,
-                                to_world: frame.to_world,
-                                identity: frame.to_world == DAffine3::IDENTITY,
-                                factor: frame.sigma,
-                                condition: frame.condition(),
-                                material: *material,
-                            });
+                            prog.leaves.push(Leaf::new(shape, *material, &frame)?);
                             depth += 1;
                             prog.depth = prog.depth.max(depth);
                         }
@@ -143,23 +214,7 @@ impl Program {
                                 prog.depth = prog.depth.max(depth);
                                 continue;
                             }
-                            let code = match smooth {
-                                None => match op {
-                                    BoolKind::Union => Op::Union,
-                                    BoolKind::Intersect => Op::Intersect,
-                                    BoolKind::Subtract => Op::Subtract,
-                                },
-                                // Smoothing constants to world units (the blends are
-                                // homogeneous of degree one in (distance, 1/k) resp. (distance, k)).
-                                Some((kind, k)) => Op::Smooth {
-                                    op: *op,
-                                    kind: *kind,
-                                    k: match kind {
-                                        SmoothKind::Exponential => k / frame.sigma,
-                                        SmoothKind::Polynomial => k * frame.sigma,
-                                    },
-                                },
-                            };
+                            let code = Op::new(*op, *smooth, &frame);
                             // Pushed in reverse so they pop as c1 c2 op c3 op … cn op.
                             for (i, &c) in children.iter().enumerate().rev() {
                                 if i > 0 {
@@ -262,20 +317,7 @@ impl Program {
                 Instr::Leaf(i) => {
                     let l = &self.leaves[i as usize];
                     let dst = &mut s.vals[top * CHUNK..top * CHUNK + n];
-                    if l.identity {
-                        l.shape.distances(points, dst);
-                    } else {
-                        let local = &mut s.local[..n];
-                        for (q, &p) in local.iter_mut().zip(points) {
-                            *q = l.to_local.transform_point3(p);
-                        }
-                        l.shape.distances(local, dst);
-                    }
-                    if l.factor != 1.0 {
-                        for d in dst.iter_mut() {
-                            *d *= l.factor;
-                        }
-                    }
+                    l.distances(points, &mut s.local[..n], dst);
                     if MAT {
                         s.mats[top * CHUNK..top * CHUNK + n].fill(l.material);
                     }
@@ -294,21 +336,7 @@ impl Program {
                         continue;
                     }
                     top -= 1;
-                    let (lo, hi) = s.vals.split_at_mut(top * CHUNK);
-                    let a = &mut lo[(top - 1) * CHUNK..(top - 1) * CHUNK + n];
-                    let b = &hi[..n];
-                    if MAT {
-                        let (mlo, mhi) = s.mats.split_at_mut(top * CHUNK);
-                        let ma = &mut mlo[(top - 1) * CHUNK..(top - 1) * CHUNK + n];
-                        let mb = &mhi[..n];
-                        for i in 0..n {
-                            let (d, m) = combine_material(op, (a[i], ma[i]), (b[i], mb[i]));
-                            a[i] = d;
-                            ma[i] = m;
-                        }
-                    } else {
-                        combine_slices(op, a, b);
-                    }
+                    s.combine_top::<MAT>(op, top, n);
                 }
             }
         }

@@ -11,7 +11,6 @@
 mod bsp_route;
 mod eval;
 mod marching_cubes;
-mod mc_table;
 mod scene;
 mod shapes;
 mod tree;

@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::Solid;
-use crate::error::{Error, Result};
+use crate::error::{Error, MeshDefect, Result};
 use crate::primitives;
 
 impl Solid {
@@ -73,11 +73,10 @@ impl Solid {
     pub fn polyhedron<F: AsRef<[u32]>>(vertices: &[DVec3], faces: &[F]) -> Result<Solid> {
         let solid = Solid::from_polygons(primitives::polyhedron(vertices, faces)?);
         if solid.volume() <= 0.0 {
-            return Err(Error::InvalidMesh(
-                "inside out: the faces enclose no positive volume (they must wind \
-                 counter-clockwise seen from outside)"
-                    .into(),
-            ));
+            return Err(Error::mesh(MeshDefect::InsideOut {
+                inverted_shells: 1,
+                shells: 1,
+            }));
         }
         Ok(solid)
     }

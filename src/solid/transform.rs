@@ -133,7 +133,7 @@ fn in_range(solid: Solid) -> Result<Solid> {
         Err(Error::param(
             "transform",
             reach,
-            "moves the solid beyond the supported range of ±1e100",
+            format!("moves the solid beyond the supported range of ±{MAX_COORDINATE:e}"),
         ))
     } else {
         Ok(solid)

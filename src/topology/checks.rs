@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::EdgeTable;
-use crate::error::{Error, Result};
+use crate::error::{Error, MeshDefect, Result};
 use crate::geom::MAX_COORDINATE;
 
 /// Refuses positions with a NaN or infinite coordinate, among those for which `used` holds.
@@ -12,19 +12,21 @@ pub(crate) fn check_finite(positions: &[DVec3], used: impl Fn(usize) -> bool) ->
     let bad = |i: &usize| used(*i) && !positions[*i].is_finite();
     let count = (0..positions.len()).filter(bad).count();
     if let Some(first) = (0..positions.len()).find(bad) {
-        return Err(Error::InvalidMesh(format!(
-            "vertices with a non-finite coordinate: {count} (first: vertex {first} = {})",
-            positions[first]
-        )));
+        return Err(Error::mesh(MeshDefect::NonFinite {
+            vertices: count,
+            first,
+            position: positions[first],
+        }));
     }
     let far = |i: &usize| used(*i) && positions[*i].abs().max_element() > MAX_COORDINATE;
     let count = (0..positions.len()).filter(far).count();
     match (0..positions.len()).find(far) {
-        Some(first) => Err(Error::InvalidMesh(format!(
-            "vertices beyond the supported range of ±{MAX_COORDINATE:e}: {count} (first: vertex \
-             {first} = [{:e}, {:e}, {:e}]); scale the mesh down",
-            positions[first].x, positions[first].y, positions[first].z
-        ))),
+        Some(first) => Err(Error::mesh(MeshDefect::BeyondRange {
+            vertices: count,
+            first,
+            position: positions[first],
+            limit: MAX_COORDINATE,
+        })),
         None => Ok(()),
     }
 }
@@ -37,10 +39,10 @@ pub(crate) fn check_face_indices<F: AsRef<[u32]>>(
     allow_repeats: bool,
 ) -> Result<()> {
     if let Some((f, face)) = faces.iter().enumerate().find(|(_, f)| f.as_ref().len() < 3) {
-        return Err(Error::InvalidMesh(format!(
-            "face {f} has {} indices; a face needs at least 3",
-            face.as_ref().len()
-        )));
+        return Err(Error::mesh(MeshDefect::TooFewIndices {
+            face: f,
+            indices: face.as_ref().len(),
+        }));
     }
     let out_of_range = |f: &F| f.as_ref().iter().any(|&i| i as usize >= vertex_count);
     let bad = faces.iter().filter(|f| out_of_range(f)).count();
@@ -51,18 +53,21 @@ pub(crate) fn check_face_indices<F: AsRef<[u32]>>(
             .copied()
             .find(|&i| i as usize >= vertex_count)
             .unwrap_or_default();
-        return Err(Error::InvalidMesh(format!(
-            "faces with a vertex index out of range: {bad} (first: face {first} uses {index}, \
-             but there are only {vertex_count} vertices)"
-        )));
+        return Err(Error::mesh(MeshDefect::IndexOutOfRange {
+            faces: bad,
+            first_face: first,
+            index,
+            vertices: vertex_count,
+        }));
     }
     if !allow_repeats {
         let bad = faces.iter().filter(|f| repeats(f.as_ref())).count();
         if let Some(first) = faces.iter().position(|f| repeats(f.as_ref())) {
-            return Err(Error::InvalidMesh(format!(
-                "faces that repeat a vertex index: {bad} (first: face {first} = {:?})",
-                faces[first].as_ref()
-            )));
+            return Err(Error::mesh(MeshDefect::RepeatedIndex {
+                faces: bad,
+                first_face: first,
+                indices: faces[first].as_ref().to_vec(),
+            }));
         }
     }
     Ok(())
@@ -85,23 +90,15 @@ pub(crate) fn repeats(face: &[u32]) -> bool {
 /// opposite directions. Faces must have passed [`check_face_indices`] without repeats.
 pub(crate) fn check_closed<F: AsRef<[u32]>>(faces: &[F]) -> Result<()> {
     let c = EdgeTable::new(faces, |_| true).counts();
-    let defects: Vec<String> = [
-        (c.boundary, "boundary edges"),
-        (c.non_manifold, "non-manifold edges"),
-        (c.inconsistent, "inconsistently oriented edges"),
-    ]
-    .into_iter()
-    .filter(|&(n, _)| n > 0)
-    .map(|(n, what)| format!("{n} {what}"))
-    .collect();
-    if defects.is_empty() {
+    if c.boundary == 0 && c.non_manifold == 0 && c.inconsistent == 0 {
         Ok(())
     } else {
-        Err(Error::InvalidMesh(format!(
-            "not closed: {} (of {} edges)",
-            defects.join(", "),
-            c.edges
-        )))
+        Err(Error::mesh(MeshDefect::NotClosed {
+            boundary_edges: c.boundary,
+            non_manifold_edges: c.non_manifold,
+            inconsistent_edges: c.inconsistent,
+            edges: c.edges,
+        }))
     }
 }
 

@@ -1,0 +1,71 @@
+//! `union`, `intersection`, `difference`: read each input as a solid, combine, write.
+
+use std::path::Path;
+
+use bspcsg::{BoolOp, FromMeshOptions, Material, MeshDefect, boolean_all, read_solid};
+
+use crate::cli::BooleanArgs;
+use crate::failure::Failure;
+use crate::output::{finish, output_target};
+use crate::progress::Progress;
+
+/// `union`, `intersection`, `difference`.
+pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Result<(), Failure> {
+    let (out, format) = output_target(&args.output)?;
+    let options = if args.allow_open {
+        FromMeshOptions::lenient()
+    } else {
+        FromMeshOptions::default()
+    };
+    let mut solids = Vec::with_capacity(args.inputs.len());
+    let mut materials = Vec::with_capacity(args.inputs.len());
+    for (i, path) in args.inputs.iter().enumerate() {
+        progress.step(format!("reading {}", path.display()));
+        let solid = read_solid(path, &options).map_err(|e| {
+            // The flag helps with open or inside-out input only, and only if not given yet.
+            let hint = !args.allow_open
+                && matches!(
+                    e.mesh_defect(),
+                    Some(MeshDefect::NotClosed { .. } | MeshDefect::InsideOut { .. })
+                );
+            let mut f = Failure::from(e);
+            if hint {
+                f.message.push_str(" (pass --allow-open to go on anyway)");
+            }
+            f
+        })?;
+        // Source ids record which input each output triangle came from.
+        let id = u32::try_from(i).map_err(|_| Failure::usage_or_io("too many inputs"))?;
+        solids.push(solid.with_source(id));
+        materials.push(input_material(path, i));
+    }
+    progress.step(format!("combining {} solids", solids.len()));
+    let solid = boolean_all(op, solids);
+    progress.step("repairing (welding, closing T-junctions)");
+    let mesh = solid.to_mesh();
+    finish(out, format, &mesh, &materials, progress)
+}
+
+/// The material that marks input `i`'s triangles: named after its file, coloured from a small
+/// palette so that the inputs tell apart in a viewer.
+pub(crate) fn input_material(path: &Path, i: usize) -> Material {
+    const PALETTE: [[f64; 3]; 8] = [
+        [0.70, 0.70, 0.72],
+        [0.90, 0.35, 0.20],
+        [0.20, 0.50, 0.90],
+        [0.30, 0.75, 0.30],
+        [0.90, 0.75, 0.15],
+        [0.60, 0.30, 0.80],
+        [0.15, 0.75, 0.75],
+        [0.85, 0.40, 0.65],
+    ];
+    let [r, g, b] = PALETTE[i % PALETTE.len()];
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| format!("input_{i}"));
+    Material {
+        name,
+        base_color: [r, g, b, 1.0],
+    }
+}

@@ -1,0 +1,16 @@
+//! `convert`: read a mesh in one format, write it in another.
+
+use bspcsg::read_mesh;
+
+use crate::cli::ConvertArgs;
+use crate::failure::Failure;
+use crate::output::{finish, output_target};
+use crate::progress::Progress;
+
+/// `convert`.
+pub(crate) fn convert(args: &ConvertArgs, progress: &Progress) -> Result<(), Failure> {
+    let (out, format) = output_target(&args.output)?;
+    progress.step(format!("reading {}", args.input.display()));
+    let mesh = read_mesh(&args.input)?;
+    finish(out, format, &mesh, &[], progress)
+}

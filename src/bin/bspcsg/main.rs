@@ -1,0 +1,70 @@
+//! The `bspcsg` command line tool: argument parsing, progress and printing only. Every piece of
+//! work — reading, checking, combining, repairing, baking, writing — is a library call.
+//!
+//! `cli.rs` holds the arguments, one file per subcommand does its work, `output.rs` checks the
+//! output path and writes results, `failure.rs` maps errors to exit codes.
+
+use std::process::ExitCode;
+
+use bspcsg::BoolOp;
+use clap::Parser;
+use clap::error::ErrorKind;
+
+/// The exit codes, shown in every `--help` and in the README. A macro so that `concat!` can put
+/// it after each subcommand's examples.
+macro_rules! exit_codes {
+    () => {
+        "Exit codes:
+  0  success
+  1  usage error; a file that cannot be read, parsed or written (a missing or truncated
+     file, a syntax error, NaN or infinite coordinates, a vertex index out of range, an
+     unknown extension, an invalid scene document); nothing is written
+  2  invalid geometry: an input mesh that does not bound a solid (open, non-manifold,
+     inside out; --allow-open goes on anyway), or a result the output format cannot hold
+     (coordinates beyond float32); nothing is written"
+    };
+}
+
+mod cli;
+mod combine;
+mod convert;
+mod export;
+mod failure;
+mod info;
+mod output;
+mod progress;
+
+use cli::{Cli, Command};
+use output::print_stderr;
+use progress::Progress;
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse().and_then(Cli::checked) {
+        Ok(cli) => cli,
+        Err(e) => {
+            // clap exits 2 on usage errors; here 2 means invalid geometry, so usage exits 1.
+            let _ = e.print();
+            return match e.kind() {
+                ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => ExitCode::SUCCESS,
+                _ => ExitCode::from(1),
+            };
+        }
+    };
+    let progress = Progress::new(cli.quiet);
+    let result = match cli.command {
+        Command::Union(args) => combine::combine(BoolOp::Union, &args, &progress),
+        Command::Intersection(args) => combine::combine(BoolOp::Intersection, &args, &progress),
+        Command::Difference(args) => combine::combine(BoolOp::Difference, &args, &progress),
+        Command::Info(args) => info::info(&args, &progress),
+        Command::Convert(args) => convert::convert(&args, &progress),
+        Command::Export(args) => export::export(&args, &progress),
+    };
+    progress.finish();
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(f) => {
+            print_stderr(&format!("bspcsg: error: {}", f.message));
+            ExitCode::from(f.code)
+        }
+    }
+}

@@ -1,0 +1,190 @@
+//! Operation nodes: booleans (plain and smooth) and extrusions of 2D shapes.
+
+use serde_json::{Map, Value};
+
+use super::json::{array, fault, key_path, only, positive, required, string, type_name};
+use super::parser::Parser;
+use super::shapes2d::shape_2d;
+use super::transform::transform;
+use crate::error::Result;
+use crate::sdf::shapes::Shape;
+use crate::sdf::tree::{BoolKind, Node, NodeKind, SmoothKind, Transform};
+
+impl Parser {
+    /// An `op` node: an extrusion (a leaf) or a boolean whose children come back unparsed.
+    #[allow(clippy::type_complexity)]
+    pub(super) fn op_node<'a>(
+        &mut self,
+        m: &'a Map<String, Value>,
+        op: &str,
+        path: &str,
+        scope: usize,
+    ) -> Result<(Node, Vec<(&'a Value, String, usize)>)> {
+        let transform = transform(m, path)?;
+        if op == "extrude" {
+            return Ok((self.extrude(m, path, scope, transform)?, vec![]));
+        }
+        let (base, smooth) = op_kind(op, path)?;
+        if smooth {
+            only(
+                m,
+                path,
+                &[
+                    "op", "children", "smooth_k", "smooth", "pos", "rot", "scale", "name",
+                ],
+                "a smooth operation",
+            )?;
+        } else {
+            only(
+                m,
+                path,
+                &["op", "children", "pos", "rot", "scale", "name"],
+                "an operation (smooth_k and smooth belong to smooth_* ops)",
+            )?;
+        }
+        let smooth = if smooth {
+            Some(smoothing(m, path)?)
+        } else {
+            None
+        };
+        let cp = key_path(path, "children");
+        let children = array(required(m, path, "children", "the operands")?, &cp, None)?;
+        if children.is_empty() {
+            return Err(fault(&cp, "an operation needs at least one child"));
+        }
+        let kids = children
+            .iter()
+            .enumerate()
+            .map(|(i, c)| (c, format!("{cp}[{i}]"), scope))
+            .collect();
+        Ok((
+            Node {
+                transform,
+                kind: NodeKind::Op {
+                    op: base,
+                    smooth,
+                    children: Vec::with_capacity(children.len()),
+                },
+            },
+            kids,
+        ))
+    }
+
+    /// An extrusion of a declared or inline 2D shape along z: a leaf.
+    fn extrude(
+        &mut self,
+        m: &Map<String, Value>,
+        path: &str,
+        scope: usize,
+        transform: Transform,
+    ) -> Result<Node> {
+        only(
+            m,
+            path,
+            &[
+                "op",
+                "source_2d_sdf",
+                "extrude_depth",
+                "material",
+                "pos",
+                "rot",
+                "scale",
+                "name",
+            ],
+            "an extrude node",
+        )?;
+        let sp = key_path(path, "source_2d_sdf");
+        let src = required(
+            m,
+            path,
+            "source_2d_sdf",
+            "the id of a declared 2D shape, or the shape itself",
+        )?;
+        let shape = match src {
+            Value::String(id) => self.lookup_2d(scope, id).cloned().ok_or_else(|| {
+                let known = self.known_2d(scope);
+                fault(
+                    &sp,
+                    if known.is_empty() {
+                        format!("unknown 2D shape id `{id}`: no shapes are declared in `sdf_2d`")
+                    } else {
+                        format!("unknown 2D shape id `{id}`; declared: {}", known.join(", "))
+                    },
+                )
+            })?,
+            Value::Object(_) => shape_2d(src, &sp)?,
+            other => {
+                return Err(fault(
+                    &sp,
+                    format!(
+                        "expected a 2D shape id (a string) or a 2D shape (an object), found {}",
+                        type_name(other)
+                    ),
+                ));
+            }
+        };
+        let depth = positive(
+            required(m, path, "extrude_depth", "the extrusion's depth along z")?,
+            &key_path(path, "extrude_depth"),
+        )?;
+        let material = self.optional_material(m, path)?;
+        Ok(Node {
+            transform,
+            kind: NodeKind::Leaf {
+                shape: Shape::Extrude {
+                    shape,
+                    half_depth: 0.5 * depth,
+                },
+                material,
+            },
+        })
+    }
+}
+
+/// The boolean of an op name, and whether it is smooth.
+fn op_kind(op: &str, path: &str) -> Result<(BoolKind, bool)> {
+    Ok(match op {
+        "union" => (BoolKind::Union, false),
+        "intersect" => (BoolKind::Intersect, false),
+        "subtract" => (BoolKind::Subtract, false),
+        "smooth_union" => (BoolKind::Union, true),
+        "smooth_intersect" => (BoolKind::Intersect, true),
+        "smooth_subtract" => (BoolKind::Subtract, true),
+        other => {
+            return Err(fault(
+                &key_path(path, "op"),
+                format!(
+                    "unknown op `{other}`; expected union, intersect, subtract, smooth_union, \
+                     smooth_intersect, smooth_subtract or extrude"
+                ),
+            ));
+        }
+    })
+}
+
+/// A smooth op's blend: `smooth` (the kind, exponential by default) and `smooth_k` (> 0).
+fn smoothing(m: &Map<String, Value>, path: &str) -> Result<(SmoothKind, f64)> {
+    let k = positive(
+        required(
+            m,
+            path,
+            "smooth_k",
+            "a smooth op needs its blend constant k > 0",
+        )?,
+        &key_path(path, "smooth_k"),
+    )?;
+    let kind = match m.get("smooth") {
+        None => SmoothKind::Exponential,
+        Some(v) => match string(v, &key_path(path, "smooth"))? {
+            "exponential" => SmoothKind::Exponential,
+            "polynomial" => SmoothKind::Polynomial,
+            other => {
+                return Err(fault(
+                    &key_path(path, "smooth"),
+                    format!("unknown smoothing `{other}`; expected exponential or polynomial"),
+                ));
+            }
+        },
+    };
+    Ok((kind, k))
+}
