@@ -68,6 +68,7 @@ mod io;
 mod mesh;
 mod polygon;
 mod primitives;
+pub mod raymarch;
 mod sdf;
 mod sketch;
 mod solid;
