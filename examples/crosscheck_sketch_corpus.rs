@@ -138,7 +138,7 @@ fn main() -> ExitCode {
         eprintln!("{}: {e}", out.display());
         return ExitCode::FAILURE;
     }
-    let mut rng = Lcg(0x5eed_2d);
+    let mut rng = Lcg(0x005e_ed2d);
     let ops = [
         (BoolOp::Union, "union"),
         (BoolOp::Intersection, "intersection"),
