@@ -68,7 +68,9 @@ mod io;
 mod mesh;
 mod polygon;
 mod primitives;
+pub mod raymarch;
 mod sdf;
+mod sketch;
 mod solid;
 mod topology;
 
@@ -84,6 +86,7 @@ pub use sdf::{
     BakeOptions, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL, MAX_POLYGON_POINTS,
     MAX_REFINE_STEPS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene, TessellationOptions,
 };
+pub use sketch::{ExtrudeOptions, FillRule, Region, Sketch, SketchReport, TWIST_DEGREES_PER_SLICE};
 pub use solid::{
     BoolOp, Containment, ParseBoolOpError, PointClassifier, Solid, boolean, boolean_all,
     boolean_with,

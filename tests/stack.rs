@@ -30,3 +30,44 @@ fn big_union_on_a_small_stack() {
     assert!(volume > 4.18 && volume < 4.19 * 1.5, "volume {volume}");
     assert!(triangles > 10_000);
 }
+
+/// Ray marching, BVH build and traversal, and the agreement check keep explicit stacks: a
+/// render of the mechanical part, a render of its mesh and a full check run on small stacks.
+#[test]
+fn render_and_check_on_a_small_stack() {
+    use bspcsg::raymarch::{
+        Camera, CheckOptions, RenderOptions, View, check_mesh, render_mesh, render_scene,
+    };
+    use bspcsg::{Scene, TessellationOptions};
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .stack_size(STACK)
+        .build()
+        .unwrap();
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/scenes/mechanical_part.json"
+    );
+    let (lit, passed, cast) = pool.install(|| {
+        let scene = Scene::from_path(path).unwrap();
+        let camera = Camera::framing(&scene.bbox(), View::Iso, (96, 72)).unwrap();
+        let opts = RenderOptions::with_profile(scene.render_profile().clone());
+        let image = render_scene(&scene, &camera, &opts).unwrap();
+        let tol = scene.bbox().diagonal() / 500.0;
+        let mesh = scene
+            .to_solid(&TessellationOptions::with_tolerance(tol))
+            .unwrap()
+            .to_mesh();
+        let cast = render_mesh(&mesh, scene.materials(), &camera, &opts).unwrap();
+        let check = CheckOptions {
+            tolerance: Some(2.0 * tol),
+            ray_size: 96,
+            ..CheckOptions::default()
+        };
+        let report = check_mesh(&scene, &mesh, &check).unwrap();
+        let lit = |img: &bspcsg::raymarch::Image| img.pixels.iter().filter(|p| p.x > 0.2).count();
+        (lit(&image), report.passed(), lit(&cast))
+    });
+    assert!(passed);
+    assert!(lit > 500 && cast > 500, "{lit} {cast}");
+}

@@ -406,7 +406,7 @@ fn smooth_margin(kind: SmoothKind, k: f64) -> f64 {
     }
 }
 
-fn combine_bounds(op: Op, a: Bound, b: Bound) -> Bound {
+pub(crate) fn combine_bounds(op: Op, a: Bound, b: Bound) -> Bound {
     let alpha = a.alpha.max(b.alpha);
     let (op, m) = match op {
         Op::Union => (BoolOp::Union, 0.0),
@@ -498,7 +498,7 @@ pub(crate) fn combine(op: Op, a: f64, b: f64) -> f64 {
 /// The combined value and the material of the operand that decides it (the nearer one for a
 /// union, the farther for an intersection, the subtracted one where the cut decides).
 #[inline]
-fn combine_material(op: Op, a: (f64, u32), b: (f64, u32)) -> (f64, u32) {
+pub(crate) fn combine_material(op: Op, a: (f64, u32), b: (f64, u32)) -> (f64, u32) {
     let base = match op {
         Op::Union => BoolOp::Union,
         Op::Intersect => BoolOp::Intersection,

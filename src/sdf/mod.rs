@@ -9,6 +9,7 @@
 //! ```
 
 mod bsp_route;
+mod cull;
 mod eval;
 mod marching_cubes;
 mod scene;
@@ -18,6 +19,7 @@ mod tree;
 use rayon::prelude::*;
 
 pub use bsp_route::TessellationOptions;
+pub(crate) use cull::{Culler, Pruned};
 pub use marching_cubes::{
     BakeOptions, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL, MAX_REFINE_STEPS,
 };
