@@ -34,6 +34,28 @@ pub(crate) fn solid_angle(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> f64
     2.0 * num.atan2(den)
 }
 
+/// A triangle is a *needle* when its area is below this fraction of the square of its shell's
+/// bounding-box diagonal `d`.
+///
+/// Why 10⁻¹²: a needle's height over its longest edge `L ≤ d` is below `2·10⁻¹² d² / L`. For a
+/// long one (`L` near `d`) that is twice the plane tolerance booleans use (`10⁻¹²` of the
+/// region they work in): its apex cannot be told from its base's line by the kernel itself. A
+/// short one is a speck below `1.4·10⁻⁶ d` across, or thinner still: far below any feature a
+/// slicer, a mesher or a renderer resolves, and what manifold3d's own cleanup removes. Relative
+/// to the shell, not the whole mesh, so a unit part beside a box a million times larger keeps
+/// its triangles. Larger thresholds would start eating real detail of tessellated curves (a
+/// 10⁻³ fillet on a 10³ model has triangles of area 10⁻¹¹ d²).
+pub(crate) const NEEDLE_AREA: f64 = 1e-12;
+
+/// The farthest, as a fraction of the shell's diagonal, that removing a needle may move the
+/// surface: `√NEEDLE_AREA`, the size of the largest speck that counts as a needle.
+pub(crate) const MAX_MOVE: f64 = 1e-6;
+
+/// True when triangle `c` is a needle in a shell whose bounding-box diagonal is `diagonal`.
+pub(crate) fn is_needle([a, b, c]: [glam::DVec3; 3], diagonal: f64) -> bool {
+    0.5 * (b - a).cross(c - a).length() < NEEDLE_AREA * diagonal * diagonal
+}
+
 /// A triangle is degenerate when twice its area is at most this many units of rounding:
 /// `ε · Σ |corner| · |opposite edge|` (see [`is_zero_area`]).
 pub(crate) const ZERO_AREA_ULPS: f64 = 32.0;

@@ -129,6 +129,7 @@ impl Mesh {
 }
 
 pub(crate) mod import;
+pub(crate) mod needles;
 pub(crate) mod repair;
 pub(crate) mod report;
 pub(crate) mod weld;

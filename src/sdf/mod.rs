@@ -57,6 +57,9 @@ impl Scene {
         };
         let mut mesh = marching_cubes::march(&self.program, grid, opts.refine_steps)?;
         assign_sources(&self.program, &mut mesh);
+        // Where the surface passes within a hair of a grid vertex, the triangles of the cells
+        // around it shrink to specks: flipped or collapsed away, the mesh staying closed.
+        crate::mesh::needles::remove_needles(&mut mesh);
         Ok(mesh)
     }
 }

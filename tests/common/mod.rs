@@ -47,3 +47,43 @@ pub fn assert_clean_mesh(solid: &Solid, what: &str) -> Mesh {
     );
     mesh
 }
+
+/// Triangles whose area is below `rel × diag²` of the mesh's bounding box.
+pub fn needles(mesh: &Mesh, rel: f64) -> usize {
+    let d2 = mesh.bbox().diagonal().powi(2);
+    (0..mesh.triangle_count())
+        .filter(|&t| {
+            let [a, b, c] = mesh.triangle(t);
+            0.5 * (b - a).cross(c - a).length() < rel * d2
+        })
+        .count()
+}
+
+/// A box as an OBJ file brings it: 8 corners and 12 triangles, read as a solid.
+pub fn obj_box(min: bspcsg::glam::DVec3, max: bspcsg::glam::DVec3) -> Solid {
+    Solid::from_mesh(&obj_box_mesh(min, max)).expect("a box is closed")
+}
+
+/// The 12-triangle mesh of a box (each face split along one diagonal).
+pub fn obj_box_mesh(min: bspcsg::glam::DVec3, max: bspcsg::glam::DVec3) -> Mesh {
+    let p = |i: usize| {
+        bspcsg::glam::DVec3::new(
+            if i & 1 == 0 { min.x } else { max.x },
+            if i & 2 == 0 { min.y } else { max.y },
+            if i & 4 == 0 { min.z } else { max.z },
+        )
+    };
+    let quads: [[u32; 4]; 6] = [
+        [0, 2, 3, 1], // -z
+        [4, 5, 7, 6], // +z
+        [0, 1, 5, 4], // -y
+        [2, 6, 7, 3], // +y
+        [0, 4, 6, 2], // -x
+        [1, 3, 7, 5], // +x
+    ];
+    let triangles = quads
+        .iter()
+        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+        .collect();
+    Mesh::new((0..8).map(p).collect(), triangles)
+}

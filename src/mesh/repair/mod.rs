@@ -80,6 +80,7 @@ pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64) -> Mesh {
             (best, fewest) = (mesh, cracks.len());
         }
     }
+    super::needles::remove_needles(&mut best);
     best
 }
 

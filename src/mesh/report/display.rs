@@ -56,6 +56,13 @@ impl fmt::Display for MeshReport {
         for (n, what) in defects.iter().filter(|(n, _)| *n > 0) {
             write!(f, "\n  {what}: {n}")?;
         }
+        if self.needles > 0 {
+            write!(
+                f,
+                "\n  needles (area below 1e-12 × shell diagonal², not defects of topology): {}",
+                self.needles
+            )?;
+        }
         let (degenerate, repeated) = (self.degenerate_triangles, self.repeated_index_triangles);
         if repeated == 0 && degenerate > 0 {
             write!(f, "\n  degenerate triangles (zero area): {degenerate}")?;

@@ -40,6 +40,12 @@ use crate::topology::EdgeTable;
 ///   zeros always count, and a needle that is merely thin (a 1-wide hole joined to corners
 ///   10³⁸ away) does not.
 ///
+/// - A **needle** is a usable triangle whose area is below
+///   [`NEEDLE_AREA`](Self::NEEDLE_AREA) × d², `d` the diagonal of its shell's bounding box:
+///   not a defect of topology (a closed 2-manifold may hold needles), but of geometry that
+///   slicers, meshers and manifold3d's cleanup treat as degenerate. Booleans and marching
+///   cubes remove them wherever that changes no topology.
+///
 /// Self-intersections are not looked for: that needs geometry queries this report avoids.
 #[non_exhaustive]
 #[derive(Clone, Debug, PartialEq)]
@@ -81,6 +87,9 @@ pub struct MeshReport {
     /// Every closed, consistently oriented shell faces outward: it encloses positive volume, or
     /// it is a [cavity](ShellReport::cavity). Open and inconsistent shells are not judged.
     pub outward: bool,
+    /// Usable triangles of area below [`NEEDLE_AREA`](Self::NEEDLE_AREA) × (their shell's box
+    /// diagonal)²; see the definitions above. Not counted as degenerate.
+    pub needles: usize,
     /// Closed, consistently oriented shells that are not [outward](Self::outward): volume not
     /// positive and not a cavity. An inside-out solid has one per shell; a flat shell (two
     /// triangles back to back) counts too, as it bounds nothing.
@@ -115,12 +124,20 @@ pub struct ShellReport {
     /// other closed shells wind once around it (a sphere minus a smaller sphere within it has
     /// an outer shell and a cavity). Such a shell is correctly oriented.
     pub cavity: bool,
+    /// Triangles of this shell that are [needles](MeshReport::needles).
+    pub needles: usize,
 }
 
 impl MeshReport {
     /// A triangle is degenerate when twice its area is at most this many units of rounding:
     /// `ε · Σ |corner| · |opposite edge|`.
     pub const ZERO_AREA_ULPS: f64 = crate::geom::ZERO_AREA_ULPS;
+
+    /// A triangle is a needle when its area is below this fraction of the square of its
+    /// shell's bounding-box diagonal. 10⁻¹²: a long needle's apex then lies within twice the
+    /// booleans' plane tolerance of its base, and a short one is a speck under 1.4·10⁻⁶ of the
+    /// shell across (the crate docs, `# Needles`, give the reasoning).
+    pub const NEEDLE_AREA: f64 = crate::geom::NEEDLE_AREA;
 
     /// True when the mesh bounds a valid solid: closed, every edge used by two triangles in
     /// opposite directions, every vertex a single fan, no degenerate triangles, no invalid
@@ -178,6 +195,7 @@ fn report(mesh: &Mesh) -> MeshReport {
         .filter(|s| s.closed && s.oriented && !(s.volume > 0.0 || s.cavity))
         .count();
     let genus: Option<u64> = shells.iter().map(|s| s.genus).sum();
+    let needles = shells.iter().map(|s| s.needles).sum();
     MeshReport {
         triangles: tris.len(),
         vertices,
@@ -197,6 +215,7 @@ fn report(mesh: &Mesh) -> MeshReport {
         oriented: counts.inconsistent == 0,
         outward: inverted_shells == 0,
         inverted_shells,
+        needles,
     }
 }
 

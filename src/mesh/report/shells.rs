@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use super::ShellReport;
 use crate::disjoint_sets::DisjointSets;
-use crate::geom::{Aabb, solid_angle};
+use crate::geom::{Aabb, is_needle, solid_angle};
 use crate::mesh::Mesh;
 use crate::topology::EdgeTable;
 
@@ -38,6 +38,7 @@ pub(super) fn shells(
                 genus: None,
                 volume: 0.0,
                 cavity: false,
+                needles: 0,
             });
             boxes.push(Aabb::EMPTY);
         }
@@ -48,6 +49,15 @@ pub(super) fn shells(
         out[s].volume += (a - centre).dot((b - centre).cross(c - centre));
         for p in [a, b, c] {
             boxes[s].grow(p);
+        }
+    }
+
+    // Needles, by each shell's own size.
+    for t in (0..tris.len()).filter(|&t| usable[t]) {
+        let s = shell_of[t];
+        let corners = tris[t].map(|i| mesh.positions[i as usize]);
+        if is_needle(corners, boxes[s].diagonal()) {
+            out[s].needles += 1;
         }
     }
 

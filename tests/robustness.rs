@@ -1,0 +1,138 @@
+//! The kinds of input that once gave open, non-manifold or needle-holding output: each as a
+//! test asserting a closed 2-manifold without needles and the expected volume (and genus).
+
+mod common;
+
+use bspcsg::glam::DVec3;
+use bspcsg::{BakeOptions, Mesh, Scene, Solid};
+use common::{assert_closed_manifold, models, needles, obj_box};
+
+fn assert_clean(mesh: &Mesh, what: &str) -> bspcsg::MeshReport {
+    let report = assert_closed_manifold(mesh, what);
+    assert_eq!(needles(mesh, 1e-12), 0, "{what}: needles; {report}");
+    report
+}
+
+fn assert_volume(got: f64, want: f64, rel: f64, what: &str) {
+    let err = (got - want).abs() / want.abs();
+    println!("{what}: volume {got:.15e} (want {want:.15e}, rel err {err:.2e})");
+    assert!(
+        err <= rel,
+        "{what}: volume {got} want {want} (rel err {err:.2e})"
+    );
+}
+
+#[test]
+fn cube_minus_cube_rotated_a_millionth_degree() {
+    let cube = Solid::cube(1.0)
+        .unwrap()
+        .translate(DVec3::splat(0.5))
+        .unwrap();
+    let turned = cube.clone().rotate_axis_angle(DVec3::Z, 1e-6).unwrap();
+    let mesh = (&cube - &turned).to_mesh();
+    assert_clean(&mesh, "cube - rotated cube");
+    // Two slivers of legs 1 and tan θ, one on each side the rotation uncovers.
+    let want = (1e-6f64).to_radians().tan();
+    assert_volume(mesh.volume(), want, 1e-3, "cube - rotated cube");
+}
+
+/// The unit cube minus the 273 bars of a depth-3 Menger sponge (the geometry of the crate's own
+/// `menger_sponge`: cube and bars centred, bars 1.5 long), each box made by `make(min, max)`.
+fn menger3(make: impl Fn(DVec3, DVec3) -> Solid) -> Mesh {
+    let mut bars = Vec::new();
+    for level in 1..=3 {
+        let cells = 3u32.pow(level - 1);
+        let cell = 1.0 / cells as f64;
+        let hole = cell / 3.0;
+        for axis in 0..3 {
+            for i in 0..cells {
+                for j in 0..cells {
+                    let (u, v) = (
+                        -0.5 + cell * (i as f64 + 0.5),
+                        -0.5 + cell * (j as f64 + 0.5),
+                    );
+                    let (size, centre) = match axis {
+                        0 => (DVec3::new(1.5, hole, hole), DVec3::new(0.0, u, v)),
+                        1 => (DVec3::new(hole, 1.5, hole), DVec3::new(u, 0.0, v)),
+                        _ => (DVec3::new(hole, hole, 1.5), DVec3::new(u, v, 0.0)),
+                    };
+                    bars.push(make(centre - size / 2.0, centre + size / 2.0));
+                }
+            }
+        }
+    }
+    assert_eq!(bars.len(), 273);
+    let cube = make(DVec3::splat(-0.5), DVec3::splat(0.5));
+    // One source id per input, as the command line numbers its files.
+    let inputs = std::iter::once(cube)
+        .chain(bars)
+        .enumerate()
+        .map(|(i, s)| s.with_source(i as u32));
+    bspcsg::boolean_all(bspcsg::BoolOp::Difference, inputs).to_mesh()
+}
+
+#[test]
+fn menger_depth_3_from_obj_boxes() {
+    let mesh = menger3(obj_box);
+    let report = assert_clean(&mesh, "menger 3 from OBJ boxes");
+    assert_volume(mesh.volume(), 8000.0 / 19683.0, 1e-9, "menger 3");
+    assert_eq!(report.genus, Some(1409), "{report}");
+}
+
+fn model(name: &str) -> Option<Solid> {
+    let dir = models()?;
+    Some(bspcsg::read_solid(&dir.join(name), &Default::default()).unwrap())
+}
+
+#[test]
+fn havocglass8_union_and_intersection() {
+    let (Some(l), Some(r)) = (
+        model("Havocglass8_left.obj"),
+        model("Havocglass8_right.obj"),
+    ) else {
+        return;
+    };
+    let u = (&l | &r).to_mesh();
+    assert_clean(&u, "havocglass8 union");
+    assert_volume(u.volume(), 3.05989e6, 1e-4, "havocglass8 union");
+    let i = (&l & &r).to_mesh();
+    assert_clean(&i, "havocglass8 intersection");
+    assert_volume(i.volume(), 68524.4, 1e-4, "havocglass8 intersection");
+}
+
+#[test]
+fn fandisk_union_itself() {
+    let Some(f) = model("fandisk.obj") else {
+        return;
+    };
+    let u = (&f | &f).to_mesh();
+    assert_clean(&u, "fandisk | fandisk");
+    assert_volume(u.volume(), 20.2433749, 1e-8, "fandisk | fandisk");
+}
+
+#[test]
+fn marching_cubes_lens() {
+    let scene = Scene::from_json_str(
+        r#"{"op": "intersect", "children": [
+            {"kind": "sdf_primitive", "pos": [-0.5, 0, 0], "data": {"primitive_type": "sphere", "radius": 1}},
+            {"kind": "sdf_primitive", "pos": [0.5, 0, 0], "data": {"primitive_type": "sphere", "radius": 1}}
+        ]}"#,
+    )
+    .unwrap();
+    let mesh = scene.bake(&BakeOptions::with_cell(0.04)).unwrap();
+    let report = assert_clean(&mesh, "lens");
+    assert_eq!((report.shells.len(), report.genus), (1, Some(0)));
+    let want = 2.0 * std::f64::consts::PI * 0.25 * 2.5 / 3.0;
+    assert_volume(mesh.volume(), want, 0.02, "lens");
+}
+
+/// The same sponge with every coordinate rounded to f32, as many OBJ writers print them: bars
+/// meet the cube and each other in planes a rounding error apart.
+#[test]
+fn menger_depth_3_from_f32_obj_boxes() {
+    let f32 = |p: DVec3| p.as_vec3().as_dvec3();
+    let mesh = menger3(|a, b| obj_box(f32(a), f32(b)));
+    let report = assert_clean(&mesh, "menger 3 from f32 OBJ boxes");
+    assert_volume(mesh.volume(), 8000.0 / 19683.0, 1e-6, "menger 3 (f32)");
+    assert_eq!(report.genus, Some(1409), "{report}");
+}
