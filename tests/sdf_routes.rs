@@ -92,3 +92,8 @@ fn organic_blend() {
 fn extruded_profile() {
     check("extruded_profile");
 }
+
+#[test]
+fn turned_and_twisted() {
+    check("turned_and_twisted");
+}

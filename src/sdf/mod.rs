@@ -11,9 +11,11 @@
 mod bsp_route;
 mod cull;
 mod eval;
+mod extrusion;
 mod marching_cubes;
 mod scene;
 mod shapes;
+mod shapes2d;
 mod tree;
 
 use rayon::prelude::*;

@@ -14,7 +14,7 @@ use super::transform::transform;
 use crate::error::Result;
 use crate::mesh::Material;
 use crate::sdf::eval::Program;
-use crate::sdf::shapes::Shape2;
+use crate::sdf::shapes2d::Shape2;
 use crate::sdf::tree::{Frame, Node, NodeId, NodeKind, Transform, Tree};
 use crate::solid::BoolOp;
 
@@ -102,7 +102,7 @@ impl Parser {
         }
         let mut scope = Scope::default();
         if let Some(v) = m.get("sdf_2d") {
-            scope.shapes = shapes_2d(v, "$.sdf_2d")?;
+            scope.shapes = shapes_2d(v, "$.sdf_2d", &|_| None)?;
         }
         self.scopes.push(scope);
         let mut roots = Vec::new();
@@ -332,7 +332,9 @@ impl Parser {
         )?;
         let mut inner = scope;
         if let Some(v) = m.get("sdf_2d") {
-            let shapes = shapes_2d(v, &key_path(path, "sdf_2d"))?;
+            let shapes = shapes_2d(v, &key_path(path, "sdf_2d"), &|id| {
+                self.lookup_2d(scope, id).cloned()
+            })?;
             self.scopes.push(Scope {
                 parent: Some(scope),
                 shapes,
