@@ -226,7 +226,7 @@ fn repeated_index_is_degenerate() {
 
 #[test]
 fn inside_out_cube() {
-    let m = Solid::cube(1.0).unwrap().inverse().to_mesh();
+    let m = Solid::cube(1.0).unwrap().flipped().to_mesh();
     let r = m.report();
     assert!(r.closed && r.oriented);
     assert!(!r.outward);
@@ -240,7 +240,7 @@ fn inside_out_cube() {
 #[test]
 fn cavity_faces_outward() {
     // A cube with a cube-shaped hole: the inner shell has negative volume and is correct.
-    let inner = Solid::cube(1.0).unwrap().inverse().to_mesh();
+    let inner = Solid::cube(1.0).unwrap().flipped().to_mesh();
     let m = combine(&[Solid::cube(2.0).unwrap().to_mesh(), inner]);
     let r = m.report();
     assert_eq!(r.shells.len(), 2);
@@ -250,7 +250,7 @@ fn cavity_faces_outward() {
     assert!(r.to_string().contains("1 cavity"), "{r}");
 
     // The same hole beside the cube instead of inside it is an inside-out solid.
-    let beside = Solid::cube(1.0).unwrap().inverse().to_mesh();
+    let beside = Solid::cube(1.0).unwrap().flipped().to_mesh();
     let m = combine(&[cube_mesh(), moved(&beside, DVec3::X * 3.0)]);
     let r = m.report();
     assert!(!r.outward && !r.shells[1].cavity);
@@ -259,9 +259,9 @@ fn cavity_faces_outward() {
     // Nested twice: a ball in the cavity of a ball is outward again.
     let m = combine(&[
         Solid::cube(4.0).unwrap().to_mesh(),
-        Solid::cube(3.0).unwrap().inverse().to_mesh(),
+        Solid::cube(3.0).unwrap().flipped().to_mesh(),
         Solid::cube(2.0).unwrap().to_mesh(),
-        Solid::cube(1.0).unwrap().inverse().to_mesh(),
+        Solid::cube(1.0).unwrap().flipped().to_mesh(),
     ]);
     let r = m.report();
     assert!(r.is_closed_manifold(), "{r}");
@@ -654,7 +654,7 @@ fn merge_keeps_convexity() {
         for k in 0..vs.len() {
             let (a, b, c) = (vs[k], vs[(k + 1) % vs.len()], vs[(k + 2) % vs.len()]);
             assert!(
-                (b - a).cross(c - b).dot(p.plane().normal) > 0.0,
+                (b - a).cross(c - b).dot(p.plane().normal()) > 0.0,
                 "not convex: {vs:?}"
             );
         }

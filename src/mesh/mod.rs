@@ -25,8 +25,27 @@ pub struct Material {
     pub base_color: [f64; 4],
 }
 
+impl Material {
+    /// The name of the material given to triangles without one: source ids a file's
+    /// materials do not cover, and scene primitives without a material.
+    pub const DEFAULT_NAME: &'static str = "default";
+    /// Its colour, a light grey (linear RGBA).
+    pub const DEFAULT_COLOR: [f64; 4] = [0.8, 0.8, 0.8, 1.0];
+}
+
+impl Default for Material {
+    /// The default material: [`Material::DEFAULT_NAME`] in [`Material::DEFAULT_COLOR`].
+    fn default() -> Self {
+        Material {
+            name: Material::DEFAULT_NAME.to_owned(),
+            base_color: Material::DEFAULT_COLOR,
+        }
+    }
+}
+
 impl Mesh {
     /// A mesh whose triangles all have source id 0.
+    #[must_use]
     pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Self {
         let sources = vec![0; triangles.len()];
         Mesh {
@@ -37,16 +56,19 @@ impl Mesh {
     }
 
     /// Number of triangles.
+    #[must_use]
     pub fn triangle_count(&self) -> usize {
         self.triangles.len()
     }
 
     /// Number of vertices.
+    #[must_use]
     pub fn vertex_count(&self) -> usize {
         self.positions.len()
     }
 
     /// True when the mesh has no triangles.
+    #[must_use]
     pub fn is_empty(&self) -> bool {
         self.triangles.is_empty()
     }
@@ -57,6 +79,7 @@ impl Mesh {
     ///
     /// When `t` or one of its vertex indices is out of range, like slice indexing. The
     /// measurements below skip such triangles instead; [`Mesh::report`] counts them.
+    #[must_use]
     pub fn triangle(&self, t: usize) -> [DVec3; 3] {
         self.triangles[t].map(|i| self.positions[i as usize])
     }
@@ -70,6 +93,7 @@ impl Mesh {
     }
 
     /// The bounding box of the vertices used by triangles.
+    #[must_use]
     pub fn bbox(&self) -> Aabb {
         let mut b = Aabb::EMPTY;
         for t in self.valid_triangles() {
@@ -82,6 +106,7 @@ impl Mesh {
 
     /// Signed volume by the divergence theorem, summed relative to the box centre so that
     /// meshes far from the origin lose no precision. Positive for outward-facing closed meshes.
+    #[must_use]
     pub fn volume(&self) -> f64 {
         let c = self.bbox().center();
         let sum: f64 = self
@@ -95,6 +120,7 @@ impl Mesh {
     }
 
     /// Total surface area.
+    #[must_use]
     pub fn area(&self) -> f64 {
         self.valid_triangles()
             .map(|[a, b, c]| 0.5 * (b - a).cross(c - a).length())

@@ -29,6 +29,7 @@ pub enum View {
 
 impl View {
     /// Parses `iso`, `front`, `side` or `top`.
+    #[must_use]
     pub fn from_name(name: &str) -> Option<View> {
         Some(match name {
             "iso" => View::Iso,
@@ -72,6 +73,7 @@ pub struct Ray {
 impl Ray {
     /// The point at parameter `t`.
     #[inline]
+    #[must_use]
     pub fn at(&self, t: f64) -> DVec3 {
         self.origin + self.dir * t
     }
@@ -93,6 +95,7 @@ pub(crate) struct Frame {
 
 impl Camera {
     /// A perspective camera.
+    #[must_use]
     pub fn look_at(eye: DVec3, target: DVec3, up: DVec3, fov_deg: f64, size: (u32, u32)) -> Self {
         Camera {
             eye,
@@ -105,6 +108,7 @@ impl Camera {
     }
 
     /// A scene's own camera with an image size.
+    #[must_use]
     pub fn from_scene(c: &SceneCamera, size: (u32, u32)) -> Camera {
         Camera {
             eye: c.eye,
@@ -117,7 +121,11 @@ impl Camera {
     }
 
     /// The scene's own camera, or else the default framing of its solid from `view`.
-    /// Fails like [`Camera::framing`] for an unbounded scene without a camera.
+    ///
+    /// # Errors
+    ///
+    /// As [`Camera::framing`] (an empty or unbounded scene without a camera, an image size out
+    /// of range), or [`Camera::validate`] for the scene's camera.
     pub fn for_scene(scene: &Scene, view: View, size: (u32, u32)) -> Result<Camera> {
         match scene.camera() {
             Some(c) => {
@@ -131,6 +139,11 @@ impl Camera {
 
     /// The default camera for a bounded box: the named view, the whole box in the picture with
     /// a small margin. Fails for an empty or unbounded box (give a camera then).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for an empty box or an image
+    /// size out of range, [`Error::Unbounded`](crate::Error::Unbounded) for an unbounded box.
     pub fn framing(bounds: &Aabb, view: View, size: (u32, u32)) -> Result<Camera> {
         if bounds.is_empty() {
             return Err(Error::param(
@@ -224,6 +237,11 @@ impl Camera {
 
     /// Checks every field: finite, eye ≠ target, up not along the view, a field of view in
     /// (0°, 180°), a positive orthographic height, an image size in range.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) naming the first field out
+    /// of range.
     pub fn validate(&self) -> Result<()> {
         for (name, v) in [("eye", self.eye), ("target", self.target), ("up", self.up)] {
             if !v.is_finite() {
@@ -305,6 +323,11 @@ impl Camera {
     }
 
     /// The ray through pixel `(x, y)`'s centre (fractional pixels allowed).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) when the camera does not
+    /// validate ([`Camera::validate`]).
     pub fn ray(&self, x: f64, y: f64) -> Result<Ray> {
         Ok(self.frame()?.ray(x + 0.5, y + 0.5))
     }
@@ -367,8 +390,9 @@ impl Frame {
 /// blends and stretched primitives widen them), so a coarse marching-cubes pass (48 cells a
 /// side, a few milliseconds) finds the solid's real extent; the conservative box is the
 /// fallback.
+#[must_use]
 pub fn framing_bounds(scene: &Scene) -> Aabb {
-    let b = scene.bounds();
+    let b = scene.bbox();
     if b.is_empty() || !(b.min.is_finite() && b.max.is_finite()) {
         return b;
     }

@@ -37,7 +37,7 @@ pub(crate) fn check(args: &CheckArgs, progress: &Progress) -> Result<(), Failure
     };
     progress.step(format!("reading {}", args.scene.display()));
     let scene = Scene::from_path(&args.scene).map_err(in_scene)?;
-    let diagonal = scene.bounds().diagonal();
+    let diagonal = scene.bbox().diagonal();
     let (mesh, what, tolerance) = match &args.mesh {
         Some(path) => {
             progress.step(format!("reading {}", path.display()));
@@ -49,7 +49,7 @@ pub(crate) fn check(args: &CheckArgs, progress: &Progress) -> Result<(), Failure
             // baked at four times it) or the marching-cubes cell, at their defaults.
             let t = match args.via {
                 Via::Bsp => 2.0 * diagonal / 500.0,
-                Via::Sdf => scene.bounds().size().max_element() / 128.0,
+                Via::Sdf => scene.bbox().size().max_element() / 128.0,
             };
             let route = if args.via == Via::Bsp { "bsp" } else { "sdf" };
             (mesh, format!("its {route} export"), Some(t))

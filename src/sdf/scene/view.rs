@@ -69,6 +69,7 @@ pub struct Light {
 
 impl Light {
     /// A white directional light.
+    #[must_use]
     pub fn directional(direction: DVec3, intensity: f64) -> Light {
         Light {
             kind: LightKind::Directional { direction },
@@ -78,6 +79,7 @@ impl Light {
     }
 
     /// A white point light.
+    #[must_use]
     pub fn point(position: DVec3, intensity: f64) -> Light {
         Light {
             kind: LightKind::Point { position },
@@ -88,6 +90,7 @@ impl Light {
 
     /// The pair used when a scene names no lights: a warm key from above front left and a
     /// cool, dimmer fill from the right, both directional so that they do not depend on scale.
+    #[must_use]
     pub fn default_rig() -> Vec<Light> {
         vec![
             Light {
@@ -108,6 +111,11 @@ impl Light {
     }
 
     /// Checks that every number is finite, the direction non-zero and the intensity ≥ 0.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) naming the first value out
+    /// of range.
     pub fn validate(&self) -> Result<()> {
         let v = match self.kind {
             LightKind::Directional { direction } => {
@@ -141,7 +149,7 @@ impl Light {
 
     /// From `p`: the unit direction towards the light and how far along it the light is.
     #[inline]
-    pub fn towards(&self, p: DVec3) -> (DVec3, f64) {
+    pub(crate) fn towards(&self, p: DVec3) -> (DVec3, f64) {
         match self.kind {
             LightKind::Directional { direction } => (-direction.normalize(), f64::INFINITY),
             LightKind::Point { position } => {
