@@ -769,3 +769,31 @@ fn mesh_defects_are_structured() {
     assert!(e.to_string().contains("open.stl is not closed: "), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn mesh_constructors_and_iterator() {
+    let cube = cube_mesh();
+    let area: f64 = cube
+        .triangle_corners()
+        .map(|[a, b, c]| 0.5 * (b - a).cross(c - a).length())
+        .sum();
+    assert_relative_eq!(area, cube.area(), max_relative = 1e-15);
+    assert_eq!(cube.triangle_corners().count(), 12);
+    let checked = Mesh::try_new(
+        cube.positions.clone(),
+        cube.triangles.clone(),
+        cube.sources.clone(),
+    )
+    .unwrap();
+    assert_eq!(checked, cube);
+    let short = Mesh::try_new(cube.positions.clone(), cube.triangles.clone(), vec![0; 11]);
+    assert!(matches!(
+        short.unwrap_err().mesh_defect(),
+        Some(MeshDefect::SourceCount {
+            sources: 11,
+            triangles: 12
+        })
+    ));
+    let solid = Solid::try_from(&cube).unwrap();
+    assert_relative_eq!(solid.volume(), 1.0, max_relative = 1e-14);
+}

@@ -2,10 +2,18 @@
 
 use glam::DVec3;
 
+use crate::error::{Error, MeshDefect, Result};
 use crate::geom::Aabb;
+use crate::topology::check_face_indices;
 
 /// An indexed triangle mesh with f64 positions and, per triangle, the id of the input it came
 /// from (materials ride on these ids). Triangles wind counter-clockwise seen from outside.
+///
+/// A plain exchange type, like a file's content: the fields are public and may hold anything.
+/// [`Mesh::try_new`] checks the lengths and indices where a caller wants that up front;
+/// otherwise [`Mesh::report`] describes whatever the mesh holds, and readers, writers and
+/// [`Solid::from_mesh`](crate::Solid::from_mesh) refuse a mesh that breaks them with its
+/// [`MeshDefect`].
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
     /// Vertex positions.
@@ -44,7 +52,47 @@ impl Default for Material {
 }
 
 impl Mesh {
-    /// A mesh whose triangles all have source id 0.
+    /// A mesh from positions, triangles and one source id per triangle, checked: refused with
+    /// [`MeshDefect::SourceCount`] when the lengths differ and
+    /// [`MeshDefect::IndexOutOfRange`] when a triangle refers to a missing vertex.
+    ///
+    /// ```
+    /// use bspcsg::{Mesh, glam::DVec3};
+    /// let p = vec![DVec3::ZERO, DVec3::X, DVec3::Y];
+    /// assert!(Mesh::try_new(p.clone(), vec![[0, 1, 2]], vec![7]).is_ok());
+    /// assert!(Mesh::try_new(p.clone(), vec![[0, 1, 3]], vec![7]).is_err());
+    /// assert!(Mesh::try_new(p, vec![[0, 1, 2]], vec![]).is_err());
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidMesh`] with the defect, as above.
+    pub fn try_new(
+        positions: Vec<DVec3>,
+        triangles: Vec<[u32; 3]>,
+        sources: Vec<u32>,
+    ) -> Result<Self> {
+        if sources.len() != triangles.len() {
+            return Err(Error::mesh(MeshDefect::SourceCount {
+                sources: sources.len(),
+                triangles: triangles.len(),
+            }));
+        }
+        check_face_indices(&triangles, positions.len(), true)?;
+        Ok(Mesh {
+            positions,
+            triangles,
+            sources,
+        })
+    }
+
+    /// The corner positions of every triangle whose indices are all in range, in order.
+    pub fn triangle_corners(&self) -> impl Iterator<Item = [DVec3; 3]> + '_ {
+        self.valid_triangles()
+    }
+
+    /// A mesh whose triangles all have source id 0. Indices are not checked (see
+    /// [`Mesh::try_new`]).
     #[must_use]
     pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Self {
         let sources = vec![0; triangles.len()];

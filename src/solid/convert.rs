@@ -97,3 +97,12 @@ impl From<&Solid> for Mesh {
         solid.to_mesh()
     }
 }
+
+impl TryFrom<&Mesh> for Solid {
+    type Error = crate::error::Error;
+
+    /// [`Solid::from_mesh`]: the mesh checked with the default (strict) options.
+    fn try_from(mesh: &Mesh) -> Result<Solid> {
+        Solid::from_mesh(mesh)
+    }
+}
