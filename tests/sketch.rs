@@ -441,3 +441,29 @@ fn many_circles() {
     let extruded = u.extrude(1.0).unwrap();
     assert!((extruded.volume() - u.area()).abs() < 1e-9 * u.area());
 }
+
+#[test]
+fn cone_of_a_sketch_with_a_hole() {
+    // Holes and separate regions all narrow to the same apex: the surface is pinched there, and
+    // the mesh must still come out closed, manifold and oriented.
+    let ring = &Sketch::rectangle(2.0, 2.0).unwrap() - &Sketch::circle(0.5, 1e-3).unwrap();
+    let two = &ring | &square_at(3.0, 0.0, 1.0);
+    for s in [ring, two] {
+        let cone = s
+            .extrude_with(
+                3.0,
+                &ExtrudeOptions {
+                    scale_top: DVec2::ZERO,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+        closed(&cone);
+        assert!(
+            (cone.volume() - s.area()).abs() < 1e-12,
+            "{} vs {}",
+            cone.volume(),
+            s.area()
+        );
+    }
+}

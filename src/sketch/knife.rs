@@ -304,9 +304,25 @@ fn cell_line(ids: &[u32], frags: &[Frag], eps: f64) -> Option<Line> {
             0.5 * (f.a[axis] + f.b[axis])
         })
         .collect();
-    values.sort_unstable_by(f64::total_cmp);
     let n = values.len();
     let mid = n / 2;
+    // Usually the median itself has a gap below it: a selection, not a sort, finds it.
+    values.select_nth_unstable_by(mid, f64::total_cmp);
+    let below = values[..mid]
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    if values[mid] - below > 4.0 * eps {
+        return Some(Line::axis_aligned(axis, 0.5 * (below + values[mid])));
+    }
+    let above = values[mid + 1..]
+        .iter()
+        .copied()
+        .fold(f64::INFINITY, f64::min);
+    if above - values[mid] > 4.0 * eps {
+        return Some(Line::axis_aligned(axis, 0.5 * (values[mid] + above)));
+    }
+    values.sort_unstable_by(f64::total_cmp);
     // Look outward from the median over the middle half.
     for step in 0..n / 2 {
         for k in [mid + step, mid.wrapping_sub(step + 1)] {
