@@ -467,3 +467,21 @@ fn cone_of_a_sketch_with_a_hole() {
         );
     }
 }
+
+#[test]
+fn plate_drilled_hole_by_hole() {
+    let plate = Sketch::rectangle(20.0, 20.0).unwrap();
+    let holes = cases::hole_grid(20);
+    let t = std::time::Instant::now();
+    let drilled = holes.iter().fold(plate, |p, h| &p - h);
+    eprintln!("400 holes one by one: {:?}", t.elapsed());
+    valid(&drilled);
+    assert_eq!(drilled.regions().len(), 1);
+    assert_eq!(drilled.regions()[0].holes().len(), 400);
+    let expected = 400.0 - holes.iter().map(Sketch::area).sum::<f64>();
+    assert!(
+        (drilled.area() - expected).abs() < 1e-9,
+        "{}",
+        drilled.area()
+    );
+}
