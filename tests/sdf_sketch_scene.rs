@@ -112,7 +112,7 @@ fn never_overestimates(s: &Scene, tol: f64) {
         .unwrap();
     let mesh = solid.to_mesh();
     assert!(mesh.report().is_closed_manifold());
-    let b = s.bounds().expanded(0.5);
+    let b = s.bbox().expanded(0.5);
     let mut rng = Rng(99);
     let tris: Vec<[DVec3; 3]> = (0..mesh.triangle_count())
         .map(|t| mesh.triangle(t))

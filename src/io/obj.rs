@@ -19,9 +19,7 @@ use std::path::Path;
 
 use glam::DVec3;
 
-use super::{
-    DEFAULT_MATERIAL_COLOR, DEFAULT_MATERIAL_NAME, Files, OutFile, generator, parse_error,
-};
+use super::{Files, OutFile, generator, parse_error};
 use crate::error::{Error, Result};
 use crate::geom::Plane;
 use crate::geom::triangulate::triangulate_boundary;
@@ -241,10 +239,8 @@ pub(crate) fn write(path: &Path, mesh: &Mesh, materials: &[Material]) -> Files {
     );
     let mtl_path = path.with_extension("mtl");
     let with_materials = !materials.is_empty();
-    if with_materials {
-        if let Some(name) = mtl_path.file_name() {
-            let _ = writeln!(obj, "mtllib {}", name.to_string_lossy());
-        }
+    if with_materials && let Some(name) = mtl_path.file_name() {
+        let _ = writeln!(obj, "mtllib {}", name.to_string_lossy());
     }
     for p in &mesh.positions {
         // `{}` is the shortest representation that parses back to the same f64.
@@ -269,10 +265,10 @@ pub(crate) fn write(path: &Path, mesh: &Mesh, materials: &[Material]) -> Files {
                 Some(n) => n.as_str(),
                 None => {
                     if !default_written {
-                        write_material(&mut mtl, DEFAULT_MATERIAL_NAME, DEFAULT_MATERIAL_COLOR);
+                        write_material(&mut mtl, Material::DEFAULT_NAME, Material::DEFAULT_COLOR);
                         default_written = true;
                     }
-                    DEFAULT_MATERIAL_NAME
+                    Material::DEFAULT_NAME
                 }
             };
             let _ = writeln!(obj, "usemtl {name}");
@@ -311,7 +307,7 @@ fn write_material(mtl: &mut String, name: &str, c: [f64; 4]) {
 /// numbered one.
 fn material_names(materials: &[Material]) -> Vec<String> {
     let mut taken: HashSet<String> = HashSet::new();
-    taken.insert(DEFAULT_MATERIAL_NAME.to_owned());
+    taken.insert(Material::DEFAULT_NAME.to_owned());
     materials
         .iter()
         .enumerate()

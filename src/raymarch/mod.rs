@@ -20,13 +20,15 @@ mod light;
 mod march;
 mod render;
 
+/// The scene document's view types, used by the renderer as they are.
+pub use crate::sdf::{DEFAULT_FOV_DEG, Light, LightKind, Projection, SceneCamera};
 pub use bvh::{MeshBvh, MeshHit};
-pub use camera::{Camera, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, Projection, Ray, View};
+pub use camera::{Camera, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, Ray, View, framing_bounds};
 pub use check::{
     CheckOptions, CheckReport, CheckThresholds, DistanceStats, RayStats, SignStats, check_mesh,
 };
 pub use image::{Image, Rgb8};
-pub use light::{DEFAULT_AMBIENT, Light, LightKind};
+pub use light::DEFAULT_AMBIENT;
 pub use render::{RenderOptions, Shading};
 
 use crate::error::Result;
@@ -41,11 +43,15 @@ use crate::sdf::Scene;
 /// let scene = Scene::from_json_str(
 ///     r#"{"kind": "sdf_primitive", "data": {"primitive_type": "sphere", "radius": 1}}"#,
 /// )?;
-/// let camera = Camera::framing(&scene.bounds(), View::Iso, (32, 24))?;
+/// let camera = Camera::framing(&scene.bbox(), View::Iso, (32, 24))?;
 /// let image = render_scene(&scene, &camera, &RenderOptions::default())?;
 /// assert_eq!(image.pixels.len(), 32 * 24);
 /// # Ok::<(), bspcsg::Error>(())
 /// ```
+///
+/// # Errors
+///
+/// As [`render_scene_with_progress`].
 pub fn render_scene(scene: &Scene, camera: &Camera, opts: &RenderOptions) -> Result<Image> {
     render_scene_with_progress(scene, camera, opts, &|_, _| {})
 }
@@ -54,6 +60,11 @@ pub fn render_scene(scene: &Scene, camera: &Camera, opts: &RenderOptions) -> Res
 /// The options' profile decides steps, hit threshold, reach, shadows and occlusion (take the
 /// scene's own with `RenderOptions::with_profile(scene.render_profile().clone())`). Fails for
 /// an invalid camera or options.
+///
+/// # Errors
+///
+/// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for an invalid camera or
+/// options.
 pub fn render_scene_with_progress(
     scene: &Scene,
     camera: &Camera,
@@ -70,6 +81,10 @@ pub fn render_scene_with_progress(
 
 /// Ray casts a mesh (closed or not), building its BVH. `materials[s]` colours the triangles of
 /// source id `s`; missing ones are grey.
+///
+/// # Errors
+///
+/// As [`render_mesh_with_progress`].
 pub fn render_mesh(
     mesh: &Mesh,
     materials: &[Material],
@@ -81,6 +96,11 @@ pub fn render_mesh(
 }
 
 /// Ray casts a mesh through a BVH built from it, reporting progress.
+///
+/// # Errors
+///
+/// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for an invalid camera or
+/// options.
 pub fn render_mesh_with_progress(
     mesh: &Mesh,
     bvh: &MeshBvh,

@@ -7,9 +7,10 @@ use rayon::prelude::*;
 
 use super::camera::Frame;
 use super::image::Image;
-use super::light::{DEFAULT_AMBIENT, Light};
+use super::light::DEFAULT_AMBIENT;
 use crate::geom::Aabb;
 use crate::sdf::RenderProfile;
+use crate::sdf::{Light, Scene};
 
 /// How a mesh's surface normal is chosen.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -59,9 +60,22 @@ impl Default for RenderOptions {
 
 impl RenderOptions {
     /// Defaults with a given render profile.
+    #[must_use]
     pub fn with_profile(profile: RenderProfile) -> Self {
         RenderOptions {
             profile,
+            ..Default::default()
+        }
+    }
+
+    /// What the scene document asks for: its render profile, and its lights or, when it names
+    /// none, the default key + fill pair.
+    pub fn for_scene(scene: &Scene) -> Self {
+        RenderOptions {
+            profile: scene.render_profile().clone(),
+            lights: scene
+                .lights()
+                .map_or_else(Light::default_rig, <[Light]>::to_vec),
             ..Default::default()
         }
     }
@@ -164,7 +178,7 @@ pub(crate) fn render_tiles(
             let mut buf = Vec::with_capacity(t.pixels());
             shade(t, &mut buf);
             let d = done.fetch_add(1, Ordering::Relaxed) + 1;
-            if d % every == 0 || d == total {
+            if d.is_multiple_of(every) || d == total {
                 progress(d, total);
             }
             (*t, buf)

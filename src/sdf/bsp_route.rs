@@ -9,7 +9,7 @@ use super::eval::{Program, map_box};
 use super::marching_cubes::{BakeOptions, Grid, march};
 use super::scene::Scene;
 use super::shapes::Shape;
-use super::tree::{BoolKind, Frame, NodeId, NodeKind};
+use super::tree::{Frame, NodeId, NodeKind};
 use crate::error::{Error, Result};
 use crate::geom::Aabb;
 use crate::polygon::Polygon;
@@ -30,6 +30,7 @@ pub struct TessellationOptions {
 
 impl TessellationOptions {
     /// Options with a chordal tolerance.
+    #[must_use]
     pub fn with_tolerance(tolerance: f64) -> Self {
         TessellationOptions {
             tolerance: Some(tolerance),
@@ -41,6 +42,12 @@ impl TessellationOptions {
 impl Scene {
     /// The scene as a solid by the BSP route (see the module docs of `sdf`). Fails for an
     /// unbounded scene or an out-of-range tolerance.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Unbounded`] for a scene with an unbounded half-space,
+    /// [`Error::InvalidParameter`] for a tolerance or cell that is not finite and positive or
+    /// too fine for a primitive.
     pub fn to_solid(&self, opts: &TessellationOptions) -> Result<Solid> {
         let world = self.bound.bbox;
         if world.is_empty() {
@@ -79,7 +86,7 @@ impl Ctx<'_> {
     fn solid(&self, root: NodeId) -> Result<Solid> {
         enum Work {
             Visit(NodeId, Frame),
-            Combine(BoolKind, usize),
+            Combine(BoolOp, usize),
         }
         let tree = &self.scene.tree;
         let mut work = vec![Work::Visit(root, Frame::WORLD)];
@@ -230,11 +237,6 @@ impl Ctx<'_> {
     }
 }
 
-fn combine(op: BoolKind, children: Vec<Solid>) -> Solid {
-    let op = match op {
-        BoolKind::Union => BoolOp::Union,
-        BoolKind::Intersect => BoolOp::Intersection,
-        BoolKind::Subtract => BoolOp::Difference,
-    };
-    crate::solid::boolean_all(op, children)
+fn combine(op: BoolOp, children: Vec<Solid>) -> Solid {
+    crate::solid::boolean_all(children, op)
 }

@@ -25,7 +25,10 @@ pub(crate) use cull::{Culler, Pruned};
 pub use marching_cubes::{
     BakeOptions, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL, MAX_REFINE_STEPS,
 };
-pub use scene::{FALLBACK_COLOR, MAX_POLYGON_POINTS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene};
+pub use scene::{
+    DEFAULT_FOV_DEG, Light, LightKind, MAX_POLYGON_POINTS, MAX_SCENE_MAGNITUDE, Projection,
+    RenderProfile, Scene, SceneCamera,
+};
 
 use crate::error::Result;
 use crate::mesh::Mesh;
@@ -36,7 +39,7 @@ impl Scene {
     /// each triangle carrying the material of the primitive that decides the surface there.
     ///
     /// Empty scenes give an empty mesh. Fails for an unbounded scene without
-    /// [`BakeOptions::bounds`], or for a cell or resolution out of range.
+    /// [`BakeOptions::region`], or for a cell or resolution out of range.
     ///
     /// ```
     /// use bspcsg::{BakeOptions, Scene};
@@ -47,6 +50,12 @@ impl Scene {
     /// assert!((mesh.volume() - 4.18879).abs() < 0.03);
     /// # Ok::<(), bspcsg::Error>(())
     /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Unbounded`](crate::Error::Unbounded) for an unbounded scene without [`BakeOptions::region`](crate::BakeOptions::region),
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for a cell, resolution, region or refinement out of range or
+    /// a surface that needs more than [`MAX_BAKE_TRIANGLES`] triangles.
     pub fn bake(&self, opts: &BakeOptions) -> Result<Mesh> {
         let Some(grid) = marching_cubes::Grid::new(&self.bound.bbox, opts)? else {
             return Ok(Mesh::default());

@@ -12,9 +12,9 @@ use std::sync::Arc;
 use glam::{DAffine2, DVec2};
 
 use super::shapes::{polygon, rect};
-use super::tree::BoolKind;
 use crate::error::Result;
 use crate::sketch::{FillRule, Sketch};
+use crate::solid::BoolOp;
 
 /// A 2D primitive, centred at the origin.
 #[derive(Clone, Debug, PartialEq)]
@@ -86,7 +86,7 @@ impl Place2 {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum Instr2 {
     Leaf(u32),
-    Op(BoolKind),
+    Op(BoolOp),
 }
 
 /// A 2D shape: placed primitives and the postfix program combining them.
@@ -109,7 +109,7 @@ impl Builder {
         self.instrs.push(Instr2::Leaf(self.leaves.len() as u32 - 1));
     }
 
-    pub(crate) fn op(&mut self, op: BoolKind) {
+    pub(crate) fn op(&mut self, op: BoolOp) {
         self.instrs.push(Instr2::Op(op));
     }
 
@@ -185,9 +185,9 @@ impl Shape2 {
                     let b = stack.pop().unwrap_or(f64::INFINITY);
                     let a = stack.pop().unwrap_or(f64::INFINITY);
                     stack.push(match op {
-                        BoolKind::Union => a.min(b),
-                        BoolKind::Intersect => a.max(b),
-                        BoolKind::Subtract => a.max(-b),
+                        BoolOp::Union => a.min(b),
+                        BoolOp::Intersection => a.max(b),
+                        BoolOp::Difference => a.max(-b),
                     });
                 }
             }
@@ -215,9 +215,9 @@ impl Shape2 {
                     let b = stack.pop().unwrap_or(EMPTY);
                     let a = stack.pop().unwrap_or(EMPTY);
                     stack.push(match op {
-                        BoolKind::Union => (a.0.min(b.0), a.1.max(b.1)),
-                        BoolKind::Intersect => (a.0.max(b.0), a.1.min(b.1)),
-                        BoolKind::Subtract => a,
+                        BoolOp::Union => (a.0.min(b.0), a.1.max(b.1)),
+                        BoolOp::Intersection => (a.0.max(b.0), a.1.min(b.1)),
+                        BoolOp::Difference => a,
                     });
                 }
             }
@@ -252,9 +252,9 @@ impl Shape2 {
                     let b = stack.pop().unwrap_or_default();
                     let a = stack.pop().unwrap_or_default();
                     stack.push(match op {
-                        BoolKind::Union => &a | &b,
-                        BoolKind::Intersect => &a & &b,
-                        BoolKind::Subtract => &a - &b,
+                        BoolOp::Union => &a | &b,
+                        BoolOp::Intersection => &a & &b,
+                        BoolOp::Difference => &a - &b,
                     });
                 }
             }

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Cross-check bspcsg's sketches (2D booleans, extrusions, revolutions) against manifold3d's
-CrossSection, on the corpus that examples/crosscheck_sketch_corpus.rs writes.
+CrossSection, on the corpus that tools/crosscheck_sketch_corpus.rs writes.
 
 usage: crosscheck_sketch.py CORPUS_DIR
 

@@ -13,7 +13,8 @@ use super::transform::transform;
 use crate::error::Result;
 use crate::sdf::shapes::{Extrusion, Shape};
 use crate::sdf::shapes2d::Shape2;
-use crate::sdf::tree::{BoolKind, Node, NodeKind, SmoothKind, Transform};
+use crate::sdf::tree::{Node, NodeKind, SmoothKind, Transform};
+use crate::solid::BoolOp;
 
 impl Parser {
     /// An `op` node: an extrusion (a leaf) or a boolean whose children come back unparsed.
@@ -227,14 +228,14 @@ impl Parser {
 }
 
 /// The boolean of an op name, and whether it is smooth.
-fn op_kind(op: &str, path: &str) -> Result<(BoolKind, bool)> {
+fn op_kind(op: &str, path: &str) -> Result<(BoolOp, bool)> {
     Ok(match op {
-        "union" => (BoolKind::Union, false),
-        "intersect" => (BoolKind::Intersect, false),
-        "subtract" => (BoolKind::Subtract, false),
-        "smooth_union" => (BoolKind::Union, true),
-        "smooth_intersect" => (BoolKind::Intersect, true),
-        "smooth_subtract" => (BoolKind::Subtract, true),
+        "union" => (BoolOp::Union, false),
+        "intersect" => (BoolOp::Intersection, false),
+        "subtract" => (BoolOp::Difference, false),
+        "smooth_union" => (BoolOp::Union, true),
+        "smooth_intersect" => (BoolOp::Intersection, true),
+        "smooth_subtract" => (BoolOp::Difference, true),
         other => {
             return Err(fault(
                 &key_path(path, "op"),

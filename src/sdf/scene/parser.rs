@@ -6,21 +6,31 @@ use std::collections::HashMap;
 use serde_json::{Map, Value};
 
 use super::Scene;
-use super::colour::{FALLBACK_COLOR, colour};
+use super::colour::colour;
 use super::json::{array, count, fault, key_path, object, only, required, string};
 use super::profile::{RenderProfile, render_profile};
 use super::shapes2d::shapes_2d;
 use super::transform::transform;
+use super::view::{Light, SceneCamera, camera, lights};
 use crate::error::Result;
 use crate::mesh::Material;
 use crate::sdf::eval::Program;
 use crate::sdf::shapes2d::Shape2;
-use crate::sdf::tree::{BoolKind, Frame, Node, NodeId, NodeKind, Transform, Tree};
+use crate::sdf::tree::{Frame, Node, NodeId, NodeKind, Transform, Tree};
+use crate::solid::BoolOp;
 
 #[derive(Default)]
 pub(super) struct Scope {
     parent: Option<usize>,
     shapes: HashMap<String, Shape2>,
+}
+
+/// The envelope's settings for seeing the scene.
+#[derive(Default)]
+struct Header {
+    profile: RenderProfile,
+    camera: Option<SceneCamera>,
+    lights: Option<Vec<Light>>,
 }
 
 #[derive(Default)]
@@ -44,9 +54,9 @@ impl Parser {
                 "expected a node (with `op` or `kind`) or a scene envelope (with `tree` or `nodes`)",
             ));
         }
-        let (root, profile) = if is_node {
+        let (root, header) = if is_node {
             self.scopes.push(Scope::default());
-            (self.node_tree(v, "$".into(), 0)?, RenderProfile::default())
+            (self.node_tree(v, "$".into(), 0)?, Header::default())
         } else {
             self.envelope(m)?
         };
@@ -58,13 +68,15 @@ impl Parser {
             program,
             bound,
             materials: self.materials,
-            profile,
+            profile: header.profile,
+            camera: header.camera,
+            lights: header.lights,
         })
     }
 
     /// The scene envelope: header fields, materials, 2D shapes, then `tree` and `nodes`, all
     /// united under one root.
-    fn envelope(&mut self, m: &Map<String, Value>) -> Result<(NodeId, RenderProfile)> {
+    fn envelope(&mut self, m: &Map<String, Value>) -> Result<(NodeId, Header)> {
         only(
             m,
             "$",
@@ -73,6 +85,8 @@ impl Parser {
                 "version",
                 "name",
                 "render_profile",
+                "camera",
+                "lights",
                 "materials",
                 "sdf_2d",
                 "tree",
@@ -92,9 +106,13 @@ impl Parser {
         if let Some(v) = m.get("version") {
             count(v, "$.version", 1)?;
         }
-        let profile = match m.get("render_profile") {
-            Some(v) => render_profile(v, "$.render_profile")?,
-            None => RenderProfile::default(),
+        let header = Header {
+            profile: match m.get("render_profile") {
+                Some(v) => render_profile(v, "$.render_profile")?,
+                None => RenderProfile::default(),
+            },
+            camera: m.get("camera").map(|v| camera(v, "$.camera")).transpose()?,
+            lights: m.get("lights").map(|v| lights(v, "$.lights")).transpose()?,
         };
         if let Some(v) = m.get("materials") {
             self.material_table(v, "$.materials")?;
@@ -116,7 +134,7 @@ impl Parser {
             1 => roots[0],
             _ => self.tree.push(union_of(Transform::default(), roots)),
         };
-        Ok((root, profile))
+        Ok((root, header))
     }
 
     /// The envelope's `nodes`: trees placed by a transform each, appended to `roots`.
@@ -158,7 +176,7 @@ impl Parser {
     }
 
     fn material(&mut self, id: Option<&str>, path: &str) -> Result<u32> {
-        let name = id.unwrap_or("default");
+        let name = id.unwrap_or(Material::DEFAULT_NAME);
         if let Some(&i) = self.material_index.get(name) {
             return Ok(i);
         }
@@ -176,7 +194,7 @@ impl Parser {
         self.material_index.insert(name.to_string(), i);
         self.materials.push(Material {
             name: name.to_string(),
-            base_color: FALLBACK_COLOR,
+            base_color: Material::DEFAULT_COLOR,
         });
         Ok(i)
     }
@@ -362,7 +380,7 @@ pub(super) fn union_of(transform: Transform, children: Vec<NodeId>) -> Node {
     Node {
         transform,
         kind: NodeKind::Op {
-            op: BoolKind::Union,
+            op: BoolOp::Union,
             smooth: None,
             children,
         },

@@ -13,8 +13,8 @@ use super::json::{
 };
 use crate::error::Result;
 use crate::sdf::shapes2d::{Builder, Place2, Prim2, Shape2};
-use crate::sdf::tree::BoolKind;
 use crate::sketch::Sketch;
+use crate::solid::BoolOp;
 
 /// The most points a 2D polygon may have (its simplicity check is quadratic).
 pub const MAX_POLYGON_POINTS: usize = 10_000;
@@ -42,7 +42,7 @@ pub(super) fn shapes_2d(
 pub(super) fn shape_2d(v: &Value, path: &str, lookup: Lookup<'_>) -> Result<Shape2> {
     enum Work<'a> {
         Visit(&'a Value, String, Place2),
-        Op(BoolKind),
+        Op(BoolOp),
     }
     let mut out = Builder::default();
     let mut work = vec![Work::Visit(v, path.to_string(), Place2::IDENTITY)];
@@ -83,9 +83,9 @@ pub(super) fn shape_2d(v: &Value, path: &str, lookup: Lookup<'_>) -> Result<Shap
             "a 2D operation",
         )?;
         let op = match string(op, &key_path(&path, "op"))? {
-            "union" => BoolKind::Union,
-            "intersect" => BoolKind::Intersect,
-            "subtract" => BoolKind::Subtract,
+            "union" => BoolOp::Union,
+            "intersect" => BoolOp::Intersection,
+            "subtract" => BoolOp::Difference,
             other => {
                 return Err(fault(
                     &key_path(&path, "op"),
