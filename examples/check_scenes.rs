@@ -19,10 +19,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for path in paths {
         let scene = Scene::from_path(&path)?;
         let name = path.file_stem().unwrap().to_string_lossy().into_owned();
-        let diag = scene.bounds().diagonal();
+        let diag = scene.bbox().diagonal();
         for route in ["sdf", "bsp"] {
             let (mesh, tol) = if route == "sdf" {
-                let cell = scene.bounds().size().max_element() / 128.0;
+                let cell = scene.bbox().size().max_element() / 128.0;
                 (scene.bake(&BakeOptions::with_cell(cell))?, cell)
             } else {
                 let tol = diag / 500.0;

@@ -84,12 +84,14 @@ pub use mesh::{FromMeshOptions, Material, Mesh, MeshReport, ShellReport};
 pub use polygon::{Polygon, Split};
 pub use primitives::{MAX_POLYGONS, MAX_SEGMENTS, MIN_SEGMENTS, segments_for_tolerance};
 pub use sdf::{
-    BakeOptions, FALLBACK_COLOR, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL,
-    MAX_POLYGON_POINTS, MAX_REFINE_STEPS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene,
-    TessellationOptions,
+    BakeOptions, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL, MAX_POLYGON_POINTS,
+    MAX_REFINE_STEPS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene, TessellationOptions,
 };
 pub use sketch::{ExtrudeOptions, FillRule, Region, Sketch, SketchReport, TWIST_DEGREES_PER_SLICE};
-pub use solid::{BoolOp, Containment, PointClassifier, Solid, boolean, boolean_all};
+pub use solid::{
+    BoolOp, Containment, ParseBoolOpError, PointClassifier, Solid, boolean, boolean_all,
+    boolean_with,
+};
 
 pub use glam;
 

@@ -6,7 +6,7 @@ use smallvec::SmallVec;
 use crate::geom::{Aabb, Plane, Side};
 
 /// Vertex storage: quads and their split fragments stay inline.
-pub type Vertices = SmallVec<[DVec3; 6]>;
+pub(crate) type Vertices = SmallVec<[DVec3; 6]>;
 
 /// A convex, planar polygon, wound counter-clockwise seen from the front of its plane, with the
 /// id of the input it came from. The id survives every split, so output triangles can be traced
@@ -44,8 +44,13 @@ impl Polygon {
     /// A polygon from its vertices, or `None` when they span no area (fewer than three, all
     /// collinear) or are not finite. The plane comes from Newell's method; convexity and
     /// planarity are the caller's promise.
-    pub fn new(vertices: impl Into<Vertices>, source: u32) -> Option<Polygon> {
-        let vertices = vertices.into();
+    #[must_use]
+    pub fn new(vertices: &[DVec3], source: u32) -> Option<Polygon> {
+        Polygon::from_ring(Vertices::from_slice(vertices), source)
+    }
+
+    /// [`Polygon::new`] for a ring the crate already holds.
+    pub(crate) fn from_ring(vertices: Vertices, source: u32) -> Option<Polygon> {
         if !vertices.iter().all(|v| v.is_finite()) {
             return None;
         }
@@ -67,16 +72,19 @@ impl Polygon {
     }
 
     /// The vertices, counter-clockwise seen from the front.
+    #[must_use]
     pub fn vertices(&self) -> &[DVec3] {
         &self.vertices
     }
 
     /// The supporting plane; its normal points out of the solid.
+    #[must_use]
     pub fn plane(&self) -> &Plane {
         &self.plane
     }
 
     /// The id of the input this polygon came from.
+    #[must_use]
     pub fn source(&self) -> u32 {
         self.source
     }
@@ -93,16 +101,19 @@ impl Polygon {
     }
 
     /// The bounding box of the vertices.
+    #[must_use]
     pub fn bbox(&self) -> Aabb {
         Aabb::from_points(&self.vertices)
     }
 
     /// The mean of the vertices: a point inside a convex polygon.
+    #[must_use]
     pub fn centroid(&self) -> DVec3 {
         self.vertices.iter().copied().sum::<DVec3>() / self.vertices.len() as f64
     }
 
     /// The area (Newell's vector area projected on the plane's normal).
+    #[must_use]
     pub fn area(&self) -> f64 {
         let c = self.vertices[0];
         let mut twice = DVec3::ZERO;
@@ -166,6 +177,7 @@ impl Polygon {
     /// Vertices
     /// within `eps` of the plane go to both pieces; an edge from a front to a back vertex is cut
     /// at a point computed the same way, bit for bit, by both polygons that share the edge.
+    #[must_use]
     pub fn split(&self, plane: &Plane, eps: f64) -> Split {
         if self.plane.is_same_or_flipped(plane) {
             return Split::Coplanar;

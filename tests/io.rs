@@ -601,7 +601,7 @@ fn failed_writes_leave_nothing_behind() {
     assert_eq!(fs::read(&p).unwrap(), b"old");
     // A directory in the way of the output: the rename fails, the temporary is removed.
     fs::create_dir(dir.join("taken.obj")).unwrap();
-    assert!(write_mesh(&dir.join("taken.obj"), &mesh, &[]).is_err());
+    assert!(write_mesh(dir.join("taken.obj"), &mesh, &[]).is_err());
     assert_eq!(files_in(&dir), ["keep.glb", "taken.obj"]);
     // A successful write replaces the old content.
     write_mesh(&p, &mesh, &[]).unwrap();
@@ -621,7 +621,7 @@ fn real_meshes_read_watertight_with_known_volumes() {
         ("rocker-arm.obj", Some(20088), 0.0425136236),
     ];
     for (name, triangles, volume) in cases {
-        let m = read_mesh(&dir.join(name)).unwrap();
+        let m = read_mesh(dir.join(name)).unwrap();
         if let Some(t) = triangles {
             assert_eq!(m.triangle_count(), t, "{name}");
         }
@@ -634,7 +634,7 @@ fn real_meshes_read_watertight_with_known_volumes() {
 fn real_meshes_survive_every_format() {
     let Some(models) = models() else { return };
     let dir = scratch("real_formats");
-    let m = read_mesh(&models.join("rocker-arm.obj")).unwrap();
+    let m = read_mesh(models.join("rocker-arm.obj")).unwrap();
     for format in Format::ALL {
         let p = dir.join(format!("r.{format}"));
         write_mesh(&p, &m, &[]).unwrap();
@@ -645,7 +645,7 @@ fn real_meshes_survive_every_format() {
         assert!(rel(back.volume(), m.volume()) < 1e-6, "{format}");
     }
     // The open scan reads (it is the solid constructors' job to refuse it).
-    let bunny = read_mesh(&models.join("stanford-bunny.obj")).unwrap();
+    let bunny = read_mesh(models.join("stanford-bunny.obj")).unwrap();
     assert_eq!(boundary_edges(&bunny), 223);
 }
 

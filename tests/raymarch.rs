@@ -226,7 +226,7 @@ fn golden(name: &str, img: &Image) {
 fn example_scenes_match_their_golden_images() {
     for name in ["mechanical_part", "organic_blend", "extruded_profile"] {
         let scene = example(name);
-        let cam = Camera::framing(&scene.bounds(), View::Iso, (128, 96)).unwrap();
+        let cam = Camera::framing(&scene.bbox(), View::Iso, (128, 96)).unwrap();
         let opts = RenderOptions::with_profile(scene.render_profile().clone());
         golden(name, &render_scene(&scene, &cam, &opts).unwrap());
     }
@@ -256,7 +256,7 @@ fn a_mesh_matches_its_golden_image() {
 #[test]
 fn golden_comparison_notices_a_real_change() {
     let scene = example("mechanical_part");
-    let cam = Camera::framing(&scene.bounds(), View::Iso, (128, 96)).unwrap();
+    let cam = Camera::framing(&scene.bbox(), View::Iso, (128, 96)).unwrap();
     let opts = RenderOptions::with_profile(scene.render_profile().clone());
     let a = render_scene(&scene, &cam, &opts).unwrap().to_rgb8();
     // The same scene without its mounting holes.
@@ -292,7 +292,7 @@ fn quick(tol: f64) -> CheckOptions {
 
 fn mechanical() -> (Scene, Mesh, f64) {
     let scene = example("mechanical_part");
-    let tol = scene.bounds().diagonal() / 500.0;
+    let tol = scene.bbox().diagonal() / 500.0;
     let mesh = scene
         .to_solid(&TessellationOptions::with_tolerance(tol))
         .unwrap()
@@ -323,7 +323,7 @@ fn fails_with(scene: &Scene, mesh: &Mesh, tol: f64, measure: &str) -> (String, C
 #[test]
 fn check_fails_for_a_moved_mesh() {
     let (scene, mut mesh, tol) = mechanical();
-    let shift = 0.02 * scene.bounds().size().max_element();
+    let shift = 0.02 * scene.bbox().size().max_element();
     for p in &mut mesh.positions {
         p.x += shift;
     }
@@ -395,7 +395,7 @@ fn check_refuses_what_it_cannot_measure() {
     let mesh = Solid::sphere(1.0, 16, 8).unwrap().to_mesh();
     assert!(check_mesh(&plane, &mesh, &CheckOptions::default()).is_err());
     // An unbounded scene has no default framing either.
-    assert!(Camera::framing(&plane.bounds(), View::Iso, (8, 8)).is_err());
+    assert!(Camera::framing(&plane.bbox(), View::Iso, (8, 8)).is_err());
     let mesh = Solid::sphere(1.0, 16, 8).unwrap().to_mesh();
     let bad = CheckOptions {
         tolerance: Some(f64::NAN),

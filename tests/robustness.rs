@@ -68,7 +68,7 @@ fn menger3(make: impl Fn(DVec3, DVec3) -> Solid) -> Mesh {
         .chain(bars)
         .enumerate()
         .map(|(i, s)| s.with_source(i as u32));
-    bspcsg::boolean_all(bspcsg::BoolOp::Difference, inputs).to_mesh()
+    bspcsg::boolean_all(inputs, bspcsg::BoolOp::Difference).to_mesh()
 }
 
 #[test]
@@ -81,7 +81,7 @@ fn menger_depth_3_from_obj_boxes() {
 
 fn model(name: &str) -> Option<Solid> {
     let dir = models()?;
-    Some(bspcsg::read_solid(&dir.join(name), &Default::default()).unwrap())
+    Some(bspcsg::read_solid(dir.join(name), &Default::default()).unwrap())
 }
 
 #[test]

@@ -54,7 +54,7 @@ fn spheres_tangent_at_a_grid_vertex_stay_manifold() {
     assert_eq!(s.distance(glam::DVec3::ZERO), 0.0);
     let opts = BakeOptions {
         cell: Some(0.125),
-        bounds: Some(bspcsg::Aabb::new(
+        region: Some(bspcsg::Aabb::new(
             glam::DVec3::new(-1.25, -0.75, -0.75),
             glam::DVec3::new(1.25, 0.75, 0.75),
         )),
@@ -81,7 +81,7 @@ fn surfaces_touching_or_crossing_the_bounds_are_closed() {
         scene(r#"{"kind": "sdf_primitive", "data": {"primitive_type": "box", "size": [2, 2, 2]}}"#);
     let opts = BakeOptions {
         cell: Some(0.1),
-        bounds: Some(unit),
+        region: Some(unit),
         ..Default::default()
     };
     let mesh = b.bake(&opts).unwrap();
@@ -117,7 +117,7 @@ fn empty_and_unbounded_scenes() {
     assert!(half.bake(&BakeOptions::default()).is_err());
     let bounded = BakeOptions {
         resolution: Some(16),
-        bounds: Some(bspcsg::Aabb::new(
+        region: Some(bspcsg::Aabb::new(
             glam::DVec3::splat(-1.0),
             glam::DVec3::splat(1.0),
         )),

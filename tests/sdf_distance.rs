@@ -323,7 +323,7 @@ fn every_primitive_against_brute_force() {
             .unwrap();
         let tris: Vec<[DVec3; 3]> = solid.polygons().iter().flat_map(|p| p.fan()).collect();
         let classifier = solid.classifier();
-        let bb = s.bounds().expanded(0.5);
+        let bb = s.bbox().expanded(0.5);
         let mut state = 0x9e37_79b9_7f4a_7c15u64;
         let mut rnd = || {
             state ^= state << 13;

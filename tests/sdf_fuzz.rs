@@ -58,7 +58,7 @@ proptest! {
         leaves(&doc, &mut Vec::new(), &mut paths);
         let path = pick.get(&paths).clone();
         *at(&mut doc, &path) = replacement(kind, x);
-        if let Ok(scene) = Scene::from_json_value(&doc) {
+        if let Ok(scene) = Scene::from_json_str(&doc.to_string()) {
             let _ = scene.distance(glam::DVec3::new(0.1, 0.2, 0.3));
             let _ = scene.bake(&BakeOptions::with_resolution(12));
             let _ = scene.to_solid(&TessellationOptions { tolerance: Some(0.2), cell: Some(0.3) });

@@ -49,7 +49,7 @@ fn check(name: &str) {
     assert_eq!(bsp_sources, sdf_sources, "{name}: materials");
 
     let classifier = solid.classifier();
-    let bb = scene.bounds().expanded(0.3);
+    let bb = scene.bbox().expanded(0.3);
     let mut state = 0x2545_f491_4f6c_dd1du64;
     let mut rnd = || {
         state ^= state << 13;
@@ -91,4 +91,9 @@ fn organic_blend() {
 #[test]
 fn extruded_profile() {
     check("extruded_profile");
+}
+
+#[test]
+fn turned_and_twisted() {
+    check("turned_and_twisted");
 }

@@ -27,7 +27,7 @@ fn examples_parse() {
         let path = format!("{}/examples/scenes/{name}.json", env!("CARGO_MANIFEST_DIR"));
         let s = Scene::from_path(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert!(s.primitive_count() > 1, "{name}");
-        assert!(s.bounds().diagonal().is_finite());
+        assert!(s.bbox().diagonal().is_finite());
         assert!(!s.materials().is_empty());
     }
     let m = Scene::from_path(format!(

@@ -50,10 +50,10 @@ fn render_and_check_on_a_small_stack() {
     );
     let (lit, passed, cast) = pool.install(|| {
         let scene = Scene::from_path(path).unwrap();
-        let camera = Camera::framing(&scene.bounds(), View::Iso, (96, 72)).unwrap();
+        let camera = Camera::framing(&scene.bbox(), View::Iso, (96, 72)).unwrap();
         let opts = RenderOptions::with_profile(scene.render_profile().clone());
         let image = render_scene(&scene, &camera, &opts).unwrap();
-        let tol = scene.bounds().diagonal() / 500.0;
+        let tol = scene.bbox().diagonal() / 500.0;
         let mesh = scene
             .to_solid(&TessellationOptions::with_tolerance(tol))
             .unwrap()

@@ -226,7 +226,7 @@ fn repeated_index_is_degenerate() {
 
 #[test]
 fn inside_out_cube() {
-    let m = Solid::cube(1.0).unwrap().inverse().to_mesh();
+    let m = Solid::cube(1.0).unwrap().flipped().to_mesh();
     let r = m.report();
     assert!(r.closed && r.oriented);
     assert!(!r.outward);
@@ -240,7 +240,7 @@ fn inside_out_cube() {
 #[test]
 fn cavity_faces_outward() {
     // A cube with a cube-shaped hole: the inner shell has negative volume and is correct.
-    let inner = Solid::cube(1.0).unwrap().inverse().to_mesh();
+    let inner = Solid::cube(1.0).unwrap().flipped().to_mesh();
     let m = combine(&[Solid::cube(2.0).unwrap().to_mesh(), inner]);
     let r = m.report();
     assert_eq!(r.shells.len(), 2);
@@ -250,7 +250,7 @@ fn cavity_faces_outward() {
     assert!(r.to_string().contains("1 cavity"), "{r}");
 
     // The same hole beside the cube instead of inside it is an inside-out solid.
-    let beside = Solid::cube(1.0).unwrap().inverse().to_mesh();
+    let beside = Solid::cube(1.0).unwrap().flipped().to_mesh();
     let m = combine(&[cube_mesh(), moved(&beside, DVec3::X * 3.0)]);
     let r = m.report();
     assert!(!r.outward && !r.shells[1].cavity);
@@ -259,9 +259,9 @@ fn cavity_faces_outward() {
     // Nested twice: a ball in the cavity of a ball is outward again.
     let m = combine(&[
         Solid::cube(4.0).unwrap().to_mesh(),
-        Solid::cube(3.0).unwrap().inverse().to_mesh(),
+        Solid::cube(3.0).unwrap().flipped().to_mesh(),
         Solid::cube(2.0).unwrap().to_mesh(),
-        Solid::cube(1.0).unwrap().inverse().to_mesh(),
+        Solid::cube(1.0).unwrap().flipped().to_mesh(),
     ]);
     let r = m.report();
     assert!(r.is_closed_manifold(), "{r}");
@@ -654,7 +654,7 @@ fn merge_keeps_convexity() {
         for k in 0..vs.len() {
             let (a, b, c) = (vs[k], vs[(k + 1) % vs.len()], vs[(k + 2) % vs.len()]);
             assert!(
-                (b - a).cross(c - b).dot(p.plane().normal) > 0.0,
+                (b - a).cross(c - b).dot(p.plane().normal()) > 0.0,
                 "not convex: {vs:?}"
             );
         }
@@ -768,4 +768,32 @@ fn mesh_defects_are_structured() {
     }
     assert!(e.to_string().contains("open.stl is not closed: "), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn mesh_constructors_and_iterator() {
+    let cube = cube_mesh();
+    let area: f64 = cube
+        .triangle_corners()
+        .map(|[a, b, c]| 0.5 * (b - a).cross(c - a).length())
+        .sum();
+    assert_relative_eq!(area, cube.area(), max_relative = 1e-15);
+    assert_eq!(cube.triangle_corners().count(), 12);
+    let checked = Mesh::try_new(
+        cube.positions.clone(),
+        cube.triangles.clone(),
+        cube.sources.clone(),
+    )
+    .unwrap();
+    assert_eq!(checked, cube);
+    let short = Mesh::try_new(cube.positions.clone(), cube.triangles.clone(), vec![0; 11]);
+    assert!(matches!(
+        short.unwrap_err().mesh_defect(),
+        Some(MeshDefect::SourceCount {
+            sources: 11,
+            triangles: 12
+        })
+    ));
+    let solid = Solid::try_from(&cube).unwrap();
+    assert_relative_eq!(solid.volume(), 1.0, max_relative = 1e-14);
 }

@@ -24,6 +24,7 @@ impl Aabb {
     };
 
     /// The box spanned by two corners.
+    #[must_use]
     pub fn new(min: DVec3, max: DVec3) -> Self {
         Aabb { min, max }
     }
@@ -38,6 +39,7 @@ impl Aabb {
     }
 
     /// True when the box holds no point.
+    #[must_use]
     pub fn is_empty(&self) -> bool {
         !(self.min.x <= self.max.x && self.min.y <= self.max.y && self.min.z <= self.max.z)
     }
@@ -50,6 +52,7 @@ impl Aabb {
     }
 
     /// The smallest box holding both.
+    #[must_use]
     pub fn union(&self, other: &Aabb) -> Aabb {
         Aabb {
             min: self.min.min(other.min),
@@ -58,6 +61,7 @@ impl Aabb {
     }
 
     /// The common part of both boxes (possibly empty).
+    #[must_use]
     pub fn intersection(&self, other: &Aabb) -> Aabb {
         Aabb {
             min: self.min.max(other.min),
@@ -67,6 +71,7 @@ impl Aabb {
 
     /// True when the boxes, each grown by `margin` on every side, share a point.
     #[inline]
+    #[must_use]
     pub fn overlaps(&self, other: &Aabb, margin: f64) -> bool {
         self.min.x <= other.max.x + margin
             && other.min.x <= self.max.x + margin
@@ -77,11 +82,13 @@ impl Aabb {
     }
 
     /// True when `p` lies in the box grown by `margin`.
+    #[must_use]
     pub fn contains_point(&self, p: DVec3, margin: f64) -> bool {
         p.cmpge(self.min - margin).all() && p.cmple(self.max + margin).all()
     }
 
     /// Edge lengths (zero for an empty box).
+    #[must_use]
     pub fn size(&self) -> DVec3 {
         if self.is_empty() {
             DVec3::ZERO
@@ -91,16 +98,19 @@ impl Aabb {
     }
 
     /// The centre (meaningless for an empty box).
+    #[must_use]
     pub fn center(&self) -> DVec3 {
         (self.min + self.max) * 0.5
     }
 
     /// Length of the diagonal (zero for an empty box).
+    #[must_use]
     pub fn diagonal(&self) -> f64 {
         self.size().length()
     }
 
     /// The largest absolute coordinate of any point in the box (zero for an empty box).
+    #[must_use]
     pub fn max_abs(&self) -> f64 {
         if self.is_empty() {
             0.0
@@ -110,6 +120,7 @@ impl Aabb {
     }
 
     /// The box grown by `margin` on every side.
+    #[must_use]
     pub fn expanded(&self, margin: f64) -> Aabb {
         Aabb {
             min: self.min - DVec3::splat(margin),
@@ -118,6 +129,7 @@ impl Aabb {
     }
 
     /// Index (0, 1, 2) of the longest axis.
+    #[must_use]
     pub fn longest_axis(&self) -> usize {
         let s = self.size();
         if s.x >= s.y && s.x >= s.z {

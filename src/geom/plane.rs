@@ -1,7 +1,9 @@
 use glam::DVec3;
 
 /// An oriented plane: the points `x` with `normal · (x − anchor) = 0`; `normal` has unit length
-/// and points to the front (outside) half-space.
+/// and points to the front (outside) half-space. The fields are private so that the normal stays
+/// a unit vector and `offset` agrees with `anchor`; make planes with [`Plane::from_points`] or
+/// [`Plane::from_point_normal`].
 ///
 /// Distances are measured from `anchor`, a point on the plane near the polygon it came from,
 /// not from the origin: far from the origin `normal · x − offset` loses the low digits of both
@@ -11,11 +13,11 @@ use glam::DVec3;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Plane {
     /// Unit normal, pointing to the front side.
-    pub normal: DVec3,
+    pub(crate) normal: DVec3,
     /// Signed distance of the plane from the origin along `normal` (`normal · anchor`).
-    pub offset: f64,
+    pub(crate) offset: f64,
     /// A point on the plane that distances are measured from.
-    pub anchor: DVec3,
+    pub(crate) anchor: DVec3,
 }
 
 /// Where a point or polygon lies relative to a plane, within a tolerance.
@@ -32,6 +34,27 @@ pub enum Side {
 }
 
 impl Plane {
+    /// The unit normal, pointing to the front (outside) half-space.
+    #[must_use]
+    #[inline]
+    pub fn normal(&self) -> DVec3 {
+        self.normal
+    }
+
+    /// The signed distance of the plane from the origin along the normal.
+    #[must_use]
+    #[inline]
+    pub fn offset(&self) -> f64 {
+        self.offset
+    }
+
+    /// The point on the plane that distances are measured from.
+    #[must_use]
+    #[inline]
+    pub fn anchor(&self) -> DVec3 {
+        self.anchor
+    }
+
     /// The plane of a polygon by Newell's method, which averages over all vertices and so stays
     /// well defined where three chosen points would be collinear. Vertices wind counter-clockwise
     /// seen from the front. `None` when the points span no area or are not finite.
@@ -66,6 +89,7 @@ impl Plane {
 
     /// The plane through `point` with `normal` (normalised here); `None` for a zero or
     /// non-finite normal.
+    #[must_use]
     pub fn from_point_normal(point: DVec3, normal: DVec3) -> Option<Plane> {
         Some(Plane::through(point, normal.try_normalize()?))
     }
@@ -81,12 +105,14 @@ impl Plane {
 
     /// Signed distance of `p`: positive in front.
     #[inline]
+    #[must_use]
     pub fn distance(&self, p: DVec3) -> f64 {
         self.normal.dot(p - self.anchor)
     }
 
     /// Which side `p` lies on, `Coplanar` within `eps`.
     #[inline]
+    #[must_use]
     pub fn side_of(&self, p: DVec3, eps: f64) -> Side {
         let d = self.distance(p);
         if d > eps {
@@ -113,6 +139,7 @@ impl Plane {
     /// definition, however far its vertices reach; testing its vertices instead could find a
     /// huge polygon "spanning" its own plane by rounding and split it forever.
     #[inline]
+    #[must_use]
     pub fn is_same_or_flipped(&self, other: &Plane) -> bool {
         self.anchor == other.anchor
             && ((self.normal == other.normal && self.offset == other.offset)

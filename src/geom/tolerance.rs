@@ -22,6 +22,7 @@ impl Tolerance {
     pub const FLOOR_RELATIVE: f64 = 1.0 / (1u64 << 40) as f64;
 
     /// A tolerance of exactly `eps` (callers that know better).
+    #[must_use]
     pub fn new(eps: f64) -> Self {
         Tolerance {
             eps: eps.max(f64::MIN_POSITIVE),
@@ -29,6 +30,7 @@ impl Tolerance {
     }
 
     /// The tolerance for a region: `max(RELATIVE · diagonal, FLOOR_RELATIVE · max |coordinate|)`.
+    #[must_use]
     pub fn for_region(region: &Aabb) -> Self {
         let eps = (Self::RELATIVE * region.diagonal()).max(Self::FLOOR_RELATIVE * region.max_abs());
         Tolerance::new(eps)
@@ -36,6 +38,7 @@ impl Tolerance {
 
     /// The tolerance for combining two operands: relative to where their boxes meet, or to the
     /// smaller operand where they meet only in a point.
+    #[must_use]
     pub fn for_operands(a: &Aabb, b: &Aabb) -> Self {
         let meet = a.intersection(b);
         let region = if !meet.is_empty() && meet.diagonal() > 0.0 {
@@ -50,11 +53,13 @@ impl Tolerance {
 
     /// The plane-side epsilon.
     #[inline]
+    #[must_use]
     pub fn eps(&self) -> f64 {
         self.eps
     }
 
     /// The larger of two tolerances.
+    #[must_use]
     pub fn max(self, other: Tolerance) -> Tolerance {
         Tolerance {
             eps: self.eps.max(other.eps),

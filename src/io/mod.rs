@@ -46,7 +46,8 @@ impl Format {
     /// [`Error::Unsupported`] when the extension is missing or unknown; pass a [`Format`]
     /// explicitly (e.g. parsed from a `--format` option) to [`read_mesh_as`] or
     /// [`write_mesh_as`] instead.
-    pub fn from_path(path: &Path) -> Result<Format> {
+    pub fn from_path(path: impl AsRef<Path>) -> Result<Format> {
+        let path = path.as_ref();
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -67,6 +68,7 @@ impl Format {
     }
 
     /// The usual file extension, lower case and without the dot.
+    #[must_use]
     pub fn extension(self) -> &'static str {
         match self {
             Format::Obj => "obj",
@@ -127,7 +129,8 @@ impl FromStr for Format {
 /// [`Error::Io`] when the file (or a glTF's external buffer) cannot be read, and
 /// [`Error::Parse`] naming the file (and, for OBJ and ASCII STL, the line) when the content is
 /// malformed, has non-finite coordinates or holds no triangles.
-pub fn read_mesh(path: &Path) -> Result<Mesh> {
+pub fn read_mesh(path: impl AsRef<Path>) -> Result<Mesh> {
+    let path = path.as_ref();
     read_mesh_as(path, Format::from_path(path)?)
 }
 
@@ -136,7 +139,8 @@ pub fn read_mesh(path: &Path) -> Result<Mesh> {
 /// # Errors
 ///
 /// As [`read_mesh`].
-pub fn read_mesh_as(path: &Path, format: Format) -> Result<Mesh> {
+pub fn read_mesh_as(path: impl AsRef<Path>, format: Format) -> Result<Mesh> {
+    let path = path.as_ref();
     let bytes = fs::read(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
@@ -183,8 +187,8 @@ pub fn read_mesh_from_bytes(path: &Path, bytes: &[u8], format: Format) -> Result
 ///
 /// ```no_run
 /// use bspcsg::{FromMeshOptions, read_solid};
-/// let part = read_solid("part.obj".as_ref(), &FromMeshOptions::default())?;
-/// let scan = read_solid("scan.stl".as_ref(), &FromMeshOptions::lenient())?;
+/// let part = read_solid("part.obj", &FromMeshOptions::default())?;
+/// let scan = read_solid("scan.stl", &FromMeshOptions::lenient())?;
 /// let both = &part | &scan;
 /// # Ok::<(), bspcsg::Error>(())
 /// ```
@@ -193,7 +197,8 @@ pub fn read_mesh_from_bytes(path: &Path, bytes: &[u8], format: Format) -> Result
 ///
 /// As [`read_mesh`] for the file itself, and [`Error::InvalidMesh`] with the path and the
 /// [`MeshDefect`](crate::MeshDefect) when the mesh does not bound a solid.
-pub fn read_solid(path: &Path, options: &FromMeshOptions) -> Result<Solid> {
+pub fn read_solid(path: impl AsRef<Path>, options: &FromMeshOptions) -> Result<Solid> {
+    let path = path.as_ref();
     let mesh = read_mesh(path)?;
     Solid::from_mesh_with(&mesh, options).map_err(|e| match e {
         // "x.obj is not closed: …", "x.obj is inside out: …", else "is not a valid solid".
@@ -224,7 +229,8 @@ pub fn read_solid(path: &Path, options: &FromMeshOptions) -> Result<Solid> {
 /// out of range, `sources` and `triangles` differ in length, a used position is not finite,
 /// or (STL, glTF) does not fit in float32, [`Error::InvalidParameter`] for a material colour
 /// outside 0..=1, and [`Error::Io`] naming the destination when writing fails.
-pub fn write_mesh(path: &Path, mesh: &Mesh, materials: &[Material]) -> Result<()> {
+pub fn write_mesh(path: impl AsRef<Path>, mesh: &Mesh, materials: &[Material]) -> Result<()> {
+    let path = path.as_ref();
     write_mesh_as(path, mesh, materials, Format::from_path(path)?)
 }
 
@@ -234,11 +240,12 @@ pub fn write_mesh(path: &Path, mesh: &Mesh, materials: &[Material]) -> Result<()
 ///
 /// As [`write_mesh`].
 pub fn write_mesh_as(
-    path: &Path,
+    path: impl AsRef<Path>,
     mesh: &Mesh,
     materials: &[Material],
     format: Format,
 ) -> Result<()> {
+    let path = path.as_ref();
     check_mesh(mesh, format != Format::Obj)?;
     for m in materials {
         for &c in &m.base_color {
@@ -278,11 +285,6 @@ pub(crate) struct OutFile {
     pub path: PathBuf,
     pub bytes: Vec<u8>,
 }
-
-/// The grey given to source ids without a material.
-pub(crate) const DEFAULT_MATERIAL_COLOR: [f64; 4] = [0.8, 0.8, 0.8, 1.0];
-/// The name of that default material.
-pub(crate) const DEFAULT_MATERIAL_NAME: &str = "default";
 
 /// `"bspcsg <version>"`, written as the generator of every file.
 pub(crate) fn generator() -> String {

@@ -19,9 +19,7 @@ use std::path::Path;
 
 use glam::DVec3;
 
-use super::{
-    DEFAULT_MATERIAL_COLOR, DEFAULT_MATERIAL_NAME, Files, OutFile, generator, parse_error,
-};
+use super::{Files, OutFile, generator, parse_error};
 use crate::error::{Error, Result};
 use crate::geom::Plane;
 use crate::geom::triangulate::triangulate_boundary;
@@ -269,10 +267,10 @@ pub(crate) fn write(path: &Path, mesh: &Mesh, materials: &[Material]) -> Files {
                 Some(n) => n.as_str(),
                 None => {
                     if !default_written {
-                        write_material(&mut mtl, DEFAULT_MATERIAL_NAME, DEFAULT_MATERIAL_COLOR);
+                        write_material(&mut mtl, Material::DEFAULT_NAME, Material::DEFAULT_COLOR);
                         default_written = true;
                     }
-                    DEFAULT_MATERIAL_NAME
+                    Material::DEFAULT_NAME
                 }
             };
             let _ = writeln!(obj, "usemtl {name}");
@@ -311,7 +309,7 @@ fn write_material(mtl: &mut String, name: &str, c: [f64; 4]) {
 /// numbered one.
 fn material_names(materials: &[Material]) -> Vec<String> {
     let mut taken: HashSet<String> = HashSet::new();
-    taken.insert(DEFAULT_MATERIAL_NAME.to_owned());
+    taken.insert(Material::DEFAULT_NAME.to_owned());
     materials
         .iter()
         .enumerate()

@@ -47,6 +47,7 @@ impl Default for FromMeshOptions {
 impl FromMeshOptions {
     /// Options that accept any mesh with valid indices and finite coordinates (for callers that
     /// want to go on with open or non-manifold input, such as a command-line override).
+    #[must_use]
     pub fn lenient() -> Self {
         FromMeshOptions {
             require_closed: false,
@@ -247,7 +248,7 @@ impl<'a> Merger<'a> {
         }
         // A strictly convex ring of positive area always has a plane; keep the seed's as a
         // fallback that cannot fail.
-        Polygon::new(ring.clone(), polygon.source())
+        Polygon::from_ring(ring.clone(), polygon.source())
             .unwrap_or_else(|| Polygon::with_plane(ring, *polygon.plane(), polygon.source()))
     }
 

@@ -2,10 +2,18 @@
 
 use glam::DVec3;
 
+use crate::error::{Error, MeshDefect, Result};
 use crate::geom::Aabb;
+use crate::topology::check_face_indices;
 
 /// An indexed triangle mesh with f64 positions and, per triangle, the id of the input it came
 /// from (materials ride on these ids). Triangles wind counter-clockwise seen from outside.
+///
+/// A plain exchange type, like a file's content: the fields are public and may hold anything.
+/// [`Mesh::try_new`] checks the lengths and indices where a caller wants that up front;
+/// otherwise [`Mesh::report`] describes whatever the mesh holds, and readers, writers and
+/// [`Solid::from_mesh`](crate::Solid::from_mesh) refuse a mesh that breaks them with its
+/// [`MeshDefect`].
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
     /// Vertex positions.
@@ -25,8 +33,67 @@ pub struct Material {
     pub base_color: [f64; 4],
 }
 
+impl Material {
+    /// The name of the material given to triangles without one: source ids a file's
+    /// materials do not cover, and scene primitives without a material.
+    pub const DEFAULT_NAME: &'static str = "default";
+    /// Its colour, a light grey (linear RGBA).
+    pub const DEFAULT_COLOR: [f64; 4] = [0.8, 0.8, 0.8, 1.0];
+}
+
+impl Default for Material {
+    /// The default material: [`Material::DEFAULT_NAME`] in [`Material::DEFAULT_COLOR`].
+    fn default() -> Self {
+        Material {
+            name: Material::DEFAULT_NAME.to_owned(),
+            base_color: Material::DEFAULT_COLOR,
+        }
+    }
+}
+
 impl Mesh {
-    /// A mesh whose triangles all have source id 0.
+    /// A mesh from positions, triangles and one source id per triangle, checked: refused with
+    /// [`MeshDefect::SourceCount`] when the lengths differ and
+    /// [`MeshDefect::IndexOutOfRange`] when a triangle refers to a missing vertex.
+    ///
+    /// ```
+    /// use bspcsg::{Mesh, glam::DVec3};
+    /// let p = vec![DVec3::ZERO, DVec3::X, DVec3::Y];
+    /// assert!(Mesh::try_new(p.clone(), vec![[0, 1, 2]], vec![7]).is_ok());
+    /// assert!(Mesh::try_new(p.clone(), vec![[0, 1, 3]], vec![7]).is_err());
+    /// assert!(Mesh::try_new(p, vec![[0, 1, 2]], vec![]).is_err());
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidMesh`] with the defect, as above.
+    pub fn try_new(
+        positions: Vec<DVec3>,
+        triangles: Vec<[u32; 3]>,
+        sources: Vec<u32>,
+    ) -> Result<Self> {
+        if sources.len() != triangles.len() {
+            return Err(Error::mesh(MeshDefect::SourceCount {
+                sources: sources.len(),
+                triangles: triangles.len(),
+            }));
+        }
+        check_face_indices(&triangles, positions.len(), true)?;
+        Ok(Mesh {
+            positions,
+            triangles,
+            sources,
+        })
+    }
+
+    /// The corner positions of every triangle whose indices are all in range, in order.
+    pub fn triangle_corners(&self) -> impl Iterator<Item = [DVec3; 3]> + '_ {
+        self.valid_triangles()
+    }
+
+    /// A mesh whose triangles all have source id 0. Indices are not checked (see
+    /// [`Mesh::try_new`]).
+    #[must_use]
     pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Self {
         let sources = vec![0; triangles.len()];
         Mesh {
@@ -37,16 +104,19 @@ impl Mesh {
     }
 
     /// Number of triangles.
+    #[must_use]
     pub fn triangle_count(&self) -> usize {
         self.triangles.len()
     }
 
     /// Number of vertices.
+    #[must_use]
     pub fn vertex_count(&self) -> usize {
         self.positions.len()
     }
 
     /// True when the mesh has no triangles.
+    #[must_use]
     pub fn is_empty(&self) -> bool {
         self.triangles.is_empty()
     }
@@ -57,6 +127,7 @@ impl Mesh {
     ///
     /// When `t` or one of its vertex indices is out of range, like slice indexing. The
     /// measurements below skip such triangles instead; [`Mesh::report`] counts them.
+    #[must_use]
     pub fn triangle(&self, t: usize) -> [DVec3; 3] {
         self.triangles[t].map(|i| self.positions[i as usize])
     }
@@ -70,6 +141,7 @@ impl Mesh {
     }
 
     /// The bounding box of the vertices used by triangles.
+    #[must_use]
     pub fn bbox(&self) -> Aabb {
         let mut b = Aabb::EMPTY;
         for t in self.valid_triangles() {
@@ -82,6 +154,7 @@ impl Mesh {
 
     /// Signed volume by the divergence theorem, summed relative to the box centre so that
     /// meshes far from the origin lose no precision. Positive for outward-facing closed meshes.
+    #[must_use]
     pub fn volume(&self) -> f64 {
         let c = self.bbox().center();
         let sum: f64 = self
@@ -95,6 +168,7 @@ impl Mesh {
     }
 
     /// Total surface area.
+    #[must_use]
     pub fn area(&self) -> f64 {
         self.valid_triangles()
             .map(|[a, b, c]| 0.5 * (b - a).cross(c - a).length())

@@ -29,6 +29,11 @@ pub const MAX_POLYGONS: u64 = 1 << 22;
 /// let n = bspcsg::segments_for_tolerance(1.0, 1e-3).unwrap();
 /// assert_eq!(n, 71);
 /// ```
+///
+/// # Errors
+///
+/// [`Error::InvalidParameter`] when `radius` or `tolerance` is not finite and positive, or the
+/// tolerance would need more than [`MAX_SEGMENTS`] segments.
 pub fn segments_for_tolerance(radius: f64, tolerance: f64) -> Result<u32> {
     positive("radius", radius)?;
     positive("tolerance", tolerance)?;

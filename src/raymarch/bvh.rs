@@ -90,6 +90,7 @@ impl Bin {
 impl MeshBvh {
     /// Builds the hierarchy over every triangle whose indices are in range and whose corners
     /// are finite (the others are left out and never hit).
+    #[must_use]
     pub fn build(mesh: &Mesh) -> MeshBvh {
         let mut ids: Vec<u32> = Vec::with_capacity(mesh.triangles.len());
         let mut tris: Vec<[DVec3; 3]> = Vec::with_capacity(mesh.triangles.len());
@@ -195,21 +196,25 @@ impl MeshBvh {
     }
 
     /// Number of triangles held.
+    #[must_use]
     pub fn triangle_count(&self) -> usize {
         self.corners.len()
     }
 
     /// Depth of the tree (1 for a single leaf, 0 when empty).
+    #[must_use]
     pub fn depth(&self) -> usize {
         self.depth
     }
 
     /// The box of every triangle (empty when there are none).
+    #[must_use]
     pub fn bounds(&self) -> Aabb {
         Aabb::from_points(self.corners.iter().flatten())
     }
 
     /// The nearest hit with `t` in `(t_min, t_max)`.
+    #[must_use]
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<MeshHit> {
         let mut best: Option<MeshHit> = None;
         self.traverse(ray, t_min, t_max, |bvh, k, tf| {
@@ -227,6 +232,7 @@ impl MeshBvh {
     }
 
     /// True when some triangle is hit with `t` in `(t_min, t_max)` (shadow rays).
+    #[must_use]
     pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let mut hit = false;
         self.traverse(ray, t_min, t_max, |bvh, k, tf| {
@@ -237,6 +243,7 @@ impl MeshBvh {
     }
 
     /// How many triangles the ray crosses with `t > 0` (for inside tests by parity).
+    #[must_use]
     pub fn crossings(&self, ray: &Ray) -> usize {
         let mut n = 0;
         self.traverse(ray, 0.0, f64::INFINITY, |bvh, k, tf| {
@@ -319,6 +326,7 @@ impl MeshBvh {
 
     /// The point of the mesh nearest to `p`, its distance and triangle; `None` for an empty
     /// mesh. Only triangles nearer than `max_distance` are considered.
+    #[must_use]
     pub fn closest_point(&self, p: DVec3, max_distance: f64) -> Option<(DVec3, f64, u32)> {
         if self.nodes.is_empty() {
             return None;

@@ -43,6 +43,7 @@ pub enum View {
 
 impl View {
     /// Parses `iso`, `front`, `side` or `top`.
+    #[must_use]
     pub fn from_name(name: &str) -> Option<View> {
         Some(match name {
             "iso" => View::Iso,
@@ -86,6 +87,7 @@ pub struct Ray {
 impl Ray {
     /// The point at parameter `t`.
     #[inline]
+    #[must_use]
     pub fn at(&self, t: f64) -> DVec3 {
         self.origin + self.dir * t
     }
@@ -107,6 +109,7 @@ pub(crate) struct Frame {
 
 impl Camera {
     /// A perspective camera.
+    #[must_use]
     pub fn look_at(eye: DVec3, target: DVec3, up: DVec3, fov_deg: f64, size: (u32, u32)) -> Self {
         Camera {
             eye,
@@ -120,6 +123,11 @@ impl Camera {
 
     /// The default camera for a bounded box: the named view, the whole box in the picture with
     /// a small margin. Fails for an empty or unbounded box (give a camera then).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for an empty box or an image
+    /// size out of range, [`Error::Unbounded`](crate::Error::Unbounded) for an unbounded box.
     pub fn framing(bounds: &Aabb, view: View, size: (u32, u32)) -> Result<Camera> {
         if bounds.is_empty() {
             return Err(Error::param(
@@ -182,6 +190,11 @@ impl Camera {
 
     /// Checks every field: finite, eye ≠ target, up not along the view, a field of view in
     /// (0°, 180°), a positive orthographic height, an image size in range.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) naming the first field out
+    /// of range.
     pub fn validate(&self) -> Result<()> {
         for (name, v) in [("eye", self.eye), ("target", self.target), ("up", self.up)] {
             if !v.is_finite() {
@@ -263,6 +276,11 @@ impl Camera {
     }
 
     /// The ray through pixel `(x, y)`'s centre (fractional pixels allowed).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) when the camera does not
+    /// validate ([`Camera::validate`]).
     pub fn ray(&self, x: f64, y: f64) -> Result<Ray> {
         Ok(self.frame()?.ray(x + 0.5, y + 0.5))
     }

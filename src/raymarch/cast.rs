@@ -8,7 +8,6 @@ use super::camera::{Frame, Ray};
 use super::light::shade;
 use super::render::{RenderOptions, Shading, Tile};
 use crate::mesh::{Material, Mesh};
-use crate::sdf::FALLBACK_COLOR;
 
 /// Largest angle between a triangle's normal and a vertex normal that still smooths.
 const CREASE_COS: f64 = 0.819; // cos 35°
@@ -52,7 +51,7 @@ impl<'a> MeshTracer<'a> {
             .map(|s| {
                 let c = materials
                     .get(s as usize)
-                    .map_or(FALLBACK_COLOR, |m| m.base_color);
+                    .map_or(Material::DEFAULT_COLOR, |m| m.base_color);
                 DVec3::new(c[0], c[1], c[2])
             })
             .collect();

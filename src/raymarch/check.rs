@@ -87,6 +87,7 @@ impl CheckThresholds {
     /// every surface point within `tol` of the mesh; depths within `2 tol` at the 99th
     /// percentile (a slanted surface moved by `tol` moves further along a ray); all but 0.5 %
     /// of rays and 0.1 % of sign points (taken `2 tol` or farther from the surface) agreeing.
+    #[must_use]
     pub fn for_tolerance(tol: f64) -> CheckThresholds {
         CheckThresholds {
             surface_max: tol,
@@ -168,6 +169,7 @@ pub struct CheckReport {
 
 impl CheckReport {
     /// True when every measure is within its threshold.
+    #[must_use]
     pub fn passed(&self) -> bool {
         self.failures.is_empty()
     }
@@ -195,8 +197,14 @@ impl Rng {
 /// Checks that `mesh` is the surface of `scene` (see the module docs for the measures).
 /// Fails for an empty or unbounded scene, an empty mesh or out-of-range options; a mesh that
 /// disagrees is a report with failures, not an error.
+///
+/// # Errors
+///
+/// [`Error::InvalidParameter`](crate::Error::InvalidParameter) or
+/// [`Error::Unbounded`](crate::Error::Unbounded) for an empty or unbounded scene, an empty mesh
+/// or out-of-range options.
 pub fn check_mesh(scene: &Scene, mesh: &Mesh, opts: &CheckOptions) -> Result<CheckReport> {
-    let bounds = scene.bounds();
+    let bounds = scene.bbox();
     if bounds.is_empty() {
         return Err(Error::param(
             "scene",
@@ -389,7 +397,7 @@ fn ray_views(
     tol: f64,
     opts: &CheckOptions,
 ) -> Result<RayViews> {
-    let frame_box = scene.bounds().union(&bvh.bounds());
+    let frame_box = scene.bbox().union(&bvh.bounds());
     let n = opts.ray_size;
     let mut render = RenderOptions::with_profile(scene.render_profile().clone());
     // A fixed threshold well inside the tolerance: depths are compared, not pictures.
@@ -557,7 +565,7 @@ fn coverage(
     opts: &CheckOptions,
     ray_points: &[DVec3],
 ) -> DistanceStats {
-    let region = scene.bounds().expanded(0.05 * scene.bounds().diagonal());
+    let region = scene.bbox().expanded(0.05 * scene.bbox().diagonal());
     let mut rng = Rng::new(opts.seed ^ 0xC0FE);
     let starts: Vec<DVec3> = (0..opts.coverage_samples)
         .map(|_| rng.in_box(&region))
@@ -592,7 +600,7 @@ fn coverage(
         .into_iter()
         .chain(ray_points.iter().step_by(stride).copied())
         .collect();
-    let far = scene.bounds().diagonal() + bvh.bounds().diagonal();
+    let far = scene.bbox().diagonal() + bvh.bounds().diagonal();
     let values = points
         .par_iter()
         .map(|&p| {

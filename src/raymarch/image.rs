@@ -31,6 +31,7 @@ pub struct Rgb8 {
 
 impl Image {
     /// A black image.
+    #[must_use]
     pub fn new(width: u32, height: u32) -> Image {
         Image {
             width,
@@ -40,11 +41,13 @@ impl Image {
     }
 
     /// The pixel at `(x, y)` from the top left.
+    #[must_use]
     pub fn get(&self, x: u32, y: u32) -> DVec3 {
         self.pixels[(y * self.width + x) as usize]
     }
 
     /// Encodes to 8-bit sRGB (values clamped to 0..=1).
+    #[must_use]
     pub fn to_rgb8(&self) -> Rgb8 {
         let mut data = Vec::with_capacity(self.pixels.len() * 3);
         for p in &self.pixels {
@@ -60,6 +63,10 @@ impl Image {
     }
 
     /// Writes an 8-bit sRGB PNG; see [`Rgb8::write_png`].
+    ///
+    /// # Errors
+    ///
+    /// As [`Rgb8::write_png`].
     pub fn write_png(&self, path: impl AsRef<Path>) -> Result<()> {
         self.to_rgb8().write_png(path)
     }
@@ -67,6 +74,7 @@ impl Image {
 
 impl Rgb8 {
     /// The pixel at `(x, y)`.
+    #[must_use]
     pub fn get(&self, x: u32, y: u32) -> [u8; 3] {
         let i = 3 * (y * self.width + x) as usize;
         [self.data[i], self.data[i + 1], self.data[i + 2]]
@@ -74,6 +82,11 @@ impl Rgb8 {
 
     /// Writes a PNG (sRGB chunk set). The file appears whole or not at all: the data goes to a
     /// sibling temporary file that is renamed over the target when complete.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Io`](crate::Error::Io) naming the file when it cannot be written or encoded;
+    /// the target is then left as it was.
     pub fn write_png(&self, path: impl AsRef<Path>) -> Result<()> {
         let path = path.as_ref();
         let io = |source| Error::Io {
@@ -113,6 +126,11 @@ impl Rgb8 {
     }
 
     /// Reads an 8-bit RGB or RGBA PNG (alpha dropped).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Io`](crate::Error::Io) when the file cannot be opened,
+    /// [`Error::Parse`](crate::Error::Parse) when it is not an 8-bit RGB or RGBA PNG.
     pub fn read_png(path: impl AsRef<Path>) -> Result<Rgb8> {
         let path = path.as_ref();
         let parse = |message: String| Error::Parse {
@@ -152,6 +170,7 @@ impl Rgb8 {
 
     /// Mean and largest absolute difference per channel, in 8-bit steps; `None` when the sizes
     /// differ.
+    #[must_use]
     pub fn difference(&self, other: &Rgb8) -> Option<(f64, u8)> {
         if (self.width, self.height) != (other.width, other.height) {
             return None;

@@ -36,6 +36,7 @@ pub const DEFAULT_AMBIENT: f64 = 0.1;
 
 impl Light {
     /// A white directional light.
+    #[must_use]
     pub fn directional(direction: DVec3, intensity: f64) -> Light {
         Light {
             kind: LightKind::Directional { direction },
@@ -45,6 +46,7 @@ impl Light {
     }
 
     /// A white point light.
+    #[must_use]
     pub fn point(position: DVec3, intensity: f64) -> Light {
         Light {
             kind: LightKind::Point { position },
@@ -55,6 +57,7 @@ impl Light {
 
     /// The pair used when a scene names no lights: a warm key from above front left and a
     /// cool, dimmer fill from the right, both directional so that they do not depend on scale.
+    #[must_use]
     pub fn default_rig() -> Vec<Light> {
         vec![
             Light {
@@ -75,6 +78,11 @@ impl Light {
     }
 
     /// Checks that every number is finite, the direction non-zero and the intensity ≥ 0.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) naming the first value out
+    /// of range.
     pub fn validate(&self) -> Result<()> {
         let v = match self.kind {
             LightKind::Directional { direction } => {

@@ -11,7 +11,7 @@ use super::camera::{Frame, Ray};
 use super::light::shade;
 use super::render::{RenderOptions, Tile, clip_to_box, sweep_touches};
 use crate::geom::Aabb;
-use crate::sdf::{Culler, FALLBACK_COLOR, Pruned, Scene};
+use crate::sdf::{Culler, Pruned, Scene};
 
 /// Penumbra sharpness of the soft shadows (larger: harder).
 const PENUMBRA: f64 = 10.0;
@@ -39,7 +39,7 @@ pub(crate) struct SceneTracer<'a> {
 
 impl<'a> SceneTracer<'a> {
     pub fn new(scene: &'a Scene, frame: Frame, opts: &'a RenderOptions) -> SceneTracer<'a> {
-        let bounds = scene.bounds();
+        let bounds = scene.bbox();
         let diag = bounds.diagonal();
         let size = if diag.is_finite() && diag > 0.0 {
             diag
@@ -165,9 +165,9 @@ impl<'a> SceneTracer<'a> {
             .get(material as usize)
             .copied()
             .unwrap_or(DVec3::new(
-                FALLBACK_COLOR[0],
-                FALLBACK_COLOR[1],
-                FALLBACK_COLOR[2],
+                crate::mesh::Material::DEFAULT_COLOR[0],
+                crate::mesh::Material::DEFAULT_COLOR[1],
+                crate::mesh::Material::DEFAULT_COLOR[2],
             ))
     }
 

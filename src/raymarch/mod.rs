@@ -41,11 +41,15 @@ use crate::sdf::Scene;
 /// let scene = Scene::from_json_str(
 ///     r#"{"kind": "sdf_primitive", "data": {"primitive_type": "sphere", "radius": 1}}"#,
 /// )?;
-/// let camera = Camera::framing(&scene.bounds(), View::Iso, (32, 24))?;
+/// let camera = Camera::framing(&scene.bbox(), View::Iso, (32, 24))?;
 /// let image = render_scene(&scene, &camera, &RenderOptions::default())?;
 /// assert_eq!(image.pixels.len(), 32 * 24);
 /// # Ok::<(), bspcsg::Error>(())
 /// ```
+///
+/// # Errors
+///
+/// As [`render_scene_with_progress`].
 pub fn render_scene(scene: &Scene, camera: &Camera, opts: &RenderOptions) -> Result<Image> {
     render_scene_with_progress(scene, camera, opts, &|_, _| {})
 }
@@ -54,6 +58,11 @@ pub fn render_scene(scene: &Scene, camera: &Camera, opts: &RenderOptions) -> Res
 /// The options' profile decides steps, hit threshold, reach, shadows and occlusion (take the
 /// scene's own with `RenderOptions::with_profile(scene.render_profile().clone())`). Fails for
 /// an invalid camera or options.
+///
+/// # Errors
+///
+/// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for an invalid camera or
+/// options.
 pub fn render_scene_with_progress(
     scene: &Scene,
     camera: &Camera,
@@ -70,6 +79,10 @@ pub fn render_scene_with_progress(
 
 /// Ray casts a mesh (closed or not), building its BVH. `materials[s]` colours the triangles of
 /// source id `s`; missing ones are grey.
+///
+/// # Errors
+///
+/// As [`render_mesh_with_progress`].
 pub fn render_mesh(
     mesh: &Mesh,
     materials: &[Material],
@@ -81,6 +94,11 @@ pub fn render_mesh(
 }
 
 /// Ray casts a mesh through a BVH built from it, reporting progress.
+///
+/// # Errors
+///
+/// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for an invalid camera or
+/// options.
 pub fn render_mesh_with_progress(
     mesh: &Mesh,
     bvh: &MeshBvh,

@@ -59,6 +59,7 @@ impl Default for RenderOptions {
 
 impl RenderOptions {
     /// Defaults with a given render profile.
+    #[must_use]
     pub fn with_profile(profile: RenderProfile) -> Self {
         RenderOptions {
             profile,

@@ -8,12 +8,13 @@ use glam::{DAffine3, DQuat, DVec2, DVec3};
 use super::eval::{Program, map_box};
 use super::marching_cubes::{BakeOptions, Grid, march};
 use super::scene::Scene;
-use super::shapes::{Shape, Shape2};
-use super::tree::{BoolKind, Frame, NodeId, NodeKind};
+use super::shapes::Shape;
+use super::tree::{Frame, NodeId, NodeKind};
 use crate::error::{Error, Result};
 use crate::geom::Aabb;
 use crate::polygon::Polygon;
 use crate::primitives::segments_for_tolerance;
+use crate::sketch::{ExtrudeOptions, Sketch};
 use crate::solid::BoolOp;
 use crate::solid::Solid;
 
@@ -29,6 +30,7 @@ pub struct TessellationOptions {
 
 impl TessellationOptions {
     /// Options with a chordal tolerance.
+    #[must_use]
     pub fn with_tolerance(tolerance: f64) -> Self {
         TessellationOptions {
             tolerance: Some(tolerance),
@@ -40,6 +42,12 @@ impl TessellationOptions {
 impl Scene {
     /// The scene as a solid by the BSP route (see the module docs of `sdf`). Fails for an
     /// unbounded scene or an out-of-range tolerance.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Unbounded`] for a scene with an unbounded half-space,
+    /// [`Error::InvalidParameter`] for a tolerance or cell that is not finite and positive or
+    /// too fine for a primitive.
     pub fn to_solid(&self, opts: &TessellationOptions) -> Result<Solid> {
         let world = self.bound.bbox;
         if world.is_empty() {
@@ -78,7 +86,7 @@ impl Ctx<'_> {
     fn solid(&self, root: NodeId) -> Result<Solid> {
         enum Work {
             Visit(NodeId, Frame),
-            Combine(BoolKind, usize),
+            Combine(BoolOp, usize),
         }
         let tree = &self.scene.tree;
         let mut work = vec![Work::Visit(root, Frame::WORLD)];
@@ -203,39 +211,32 @@ impl Ctx<'_> {
                 );
                 Solid::cuboid(DVec3::new(2.0 * l, 2.0 * l, l))?.transform(place)
             }
-            Shape::Extrude { shape, half_depth } => {
-                let depth = 2.0 * half_depth;
-                match shape {
-                    Shape2::Rect { half } => Solid::cuboid((*half * 2.0).extend(depth)),
-                    Shape2::Circle { radius } => {
-                        Solid::cylinder(*radius, depth, self.segments(*radius, frame)?)?
-                            .rotate_axis_angle(DVec3::X, 90.0)
-                    }
-                    Shape2::Polygon { points } => prism(points, *half_depth),
+            Shape::Extrude(e) => e.shape.to_sketch(self.tol / frame.sigma_max)?.extrude_with(
+                2.0 * e.half_depth,
+                &ExtrudeOptions {
+                    twist: e.twist,
+                    slices: None,
+                    scale_top: e.scale_top,
+                    center: true,
+                },
+            ),
+            Shape::Revolve { shape, angle } => {
+                let profile = shape.to_sketch(self.tol / frame.sigma_max)?;
+                // The half-plane x ≥ 0: a rectangle from the axis past the profile's reach.
+                let [lo, hi] = profile.bounds().unwrap_or([DVec2::ZERO; 2]);
+                let reach = hi.x.max(0.0);
+                if reach == 0.0 {
+                    return Ok(Solid::empty());
                 }
+                let span = hi - lo;
+                let half_plane = Sketch::rectangle(2.0 * reach, 2.0 * span.y)?
+                    .translate(DVec2::new(reach, 0.5 * (lo.y + hi.y)))?;
+                (&profile & &half_plane).revolve(*angle, self.segments(reach, frame)?)
             }
         }
     }
 }
 
-fn combine(op: BoolKind, children: Vec<Solid>) -> Solid {
-    let op = match op {
-        BoolKind::Union => BoolOp::Union,
-        BoolKind::Intersect => BoolOp::Intersection,
-        BoolKind::Subtract => BoolOp::Difference,
-    };
-    crate::solid::boolean_all(op, children)
-}
-
-/// A counter-clockwise polygon extruded over `|z| ≤ h`.
-fn prism(points: &[DVec2], h: f64) -> Result<Solid> {
-    let n = points.len() as u32;
-    let mut v: Vec<DVec3> = points.iter().map(|p| p.extend(-h)).collect();
-    v.extend(points.iter().map(|p| p.extend(h)));
-    let mut faces: Vec<Vec<u32>> = vec![(0..n).rev().collect(), (n..2 * n).collect()];
-    for i in 0..n {
-        let j = (i + 1) % n;
-        faces.push(vec![i, j, n + j, n + i]);
-    }
-    Solid::polyhedron(&v, &faces)
+fn combine(op: BoolOp, children: Vec<Solid>) -> Solid {
+    crate::solid::boolean_all(children, op)
 }

@@ -20,8 +20,9 @@ use smallvec::SmallVec;
 
 use super::Scene;
 use super::eval::{Bound, Instr, Op, combine, combine_bounds, combine_material, map_box};
-use super::tree::{BoolKind, SmoothKind};
+use super::tree::SmoothKind;
 use crate::geom::Aabb;
+use crate::solid::BoolOp;
 
 /// A scene's program with, per instruction, the bound of the subexpression it closes and how
 /// far that subexpression's field must be from zero before it can be dropped.
@@ -184,9 +185,9 @@ impl<'a> Culler<'a> {
                         break;
                     };
                     let base = match op {
-                        Op::Union => BoolKind::Union,
-                        Op::Intersect => BoolKind::Intersect,
-                        Op::Subtract => BoolKind::Subtract,
+                        Op::Union => BoolOp::Union,
+                        Op::Intersect => BoolOp::Intersection,
+                        Op::Subtract => BoolOp::Difference,
                         Op::Smooth { op, .. } => op,
                     };
                     let keep = match (base, a.present, b.present) {
@@ -198,8 +199,8 @@ impl<'a> Culler<'a> {
                             }
                         }
                         // One operand alone: the union is it, the difference is `a`.
-                        (BoolKind::Union, true, false) | (BoolKind::Subtract, true, false) => a,
-                        (BoolKind::Union, false, true) => {
+                        (BoolOp::Union, true, false) | (BoolOp::Difference, true, false) => a,
+                        (BoolOp::Union, false, true) => {
                             out.drain(a.at..b.at);
                             Part {
                                 at: a.at,
@@ -360,7 +361,7 @@ mod tests {
         for name in ["mechanical_part", "organic_blend", "extruded_profile"] {
             let s = Scene::from_path(format!("{dir}/{name}.json")).unwrap();
             let c = Culler::new(&s);
-            let b = s.bounds().expanded(0.2);
+            let b = s.bbox().expanded(0.2);
             let pad = 0.01;
             let mut dropped = 0;
             for _ in 0..300 {

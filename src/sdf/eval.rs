@@ -11,9 +11,10 @@ use glam::{DAffine3, DVec3};
 use smallvec::SmallVec;
 
 use super::shapes::Shape;
-use super::tree::{BoolKind, Frame, NodeId, NodeKind, SmoothKind, Tree};
+use super::tree::{Frame, NodeId, NodeKind, SmoothKind, Tree};
 use crate::error::{Error, Result};
 use crate::geom::Aabb;
+use crate::solid::BoolOp;
 
 /// One primitive, placed in the world.
 #[derive(Clone, Debug)]
@@ -40,7 +41,7 @@ pub(crate) enum Op {
     Subtract,
     /// A smooth variant with `k` in world units.
     Smooth {
-        op: BoolKind,
+        op: BoolOp,
         kind: SmoothKind,
         k: f64,
     },
@@ -153,12 +154,12 @@ impl Leaf {
 
 impl Op {
     /// The instruction of a boolean node in `frame`.
-    fn new(op: BoolKind, smooth: Option<(SmoothKind, f64)>, frame: &Frame) -> Op {
+    fn new(op: BoolOp, smooth: Option<(SmoothKind, f64)>, frame: &Frame) -> Op {
         match smooth {
             None => match op {
-                BoolKind::Union => Op::Union,
-                BoolKind::Intersect => Op::Intersect,
-                BoolKind::Subtract => Op::Subtract,
+                BoolOp::Union => Op::Union,
+                BoolOp::Intersection => Op::Intersect,
+                BoolOp::Difference => Op::Subtract,
             },
             // Smoothing constants to world units (the blends are homogeneous of degree one in
             // (distance, 1/k) resp. (distance, k)).
@@ -408,17 +409,17 @@ fn smooth_margin(kind: SmoothKind, k: f64) -> f64 {
 pub(crate) fn combine_bounds(op: Op, a: Bound, b: Bound) -> Bound {
     let alpha = a.alpha.max(b.alpha);
     let (op, m) = match op {
-        Op::Union => (BoolKind::Union, 0.0),
-        Op::Intersect => (BoolKind::Intersect, 0.0),
-        Op::Subtract => (BoolKind::Subtract, 0.0),
+        Op::Union => (BoolOp::Union, 0.0),
+        Op::Intersect => (BoolOp::Intersection, 0.0),
+        Op::Subtract => (BoolOp::Difference, 0.0),
         Op::Smooth { op, kind, k } => (op, smooth_margin(kind, k)),
     };
     // f ≤ c implies the deciding children are ≤ c + m.
     let (ab, bb) = (a.at(m), b.at(m));
     let bbox = match op {
-        BoolKind::Union => ab.union(&bb),
-        BoolKind::Intersect => ab.intersection(&bb),
-        BoolKind::Subtract => ab,
+        BoolOp::Union => ab.union(&bb),
+        BoolOp::Intersection => ab.intersection(&bb),
+        BoolOp::Difference => ab,
     };
     Bound { bbox, alpha }
 }
@@ -487,9 +488,9 @@ pub(crate) fn combine(op: Op, a: f64, b: f64) -> f64 {
         Op::Intersect => a.max(b),
         Op::Subtract => a.max(-b),
         Op::Smooth { op, kind, k } => match op {
-            BoolKind::Union => smin(kind, k, a, b),
-            BoolKind::Intersect => smax(kind, k, a, b),
-            BoolKind::Subtract => smax(kind, k, a, -b),
+            BoolOp::Union => smin(kind, k, a, b),
+            BoolOp::Intersection => smax(kind, k, a, b),
+            BoolOp::Difference => smax(kind, k, a, -b),
         },
     }
 }
@@ -499,27 +500,27 @@ pub(crate) fn combine(op: Op, a: f64, b: f64) -> f64 {
 #[inline]
 pub(crate) fn combine_material(op: Op, a: (f64, u32), b: (f64, u32)) -> (f64, u32) {
     let base = match op {
-        Op::Union => BoolKind::Union,
-        Op::Intersect => BoolKind::Intersect,
-        Op::Subtract => BoolKind::Subtract,
+        Op::Union => BoolOp::Union,
+        Op::Intersect => BoolOp::Intersection,
+        Op::Subtract => BoolOp::Difference,
         Op::Smooth { op, .. } => op,
     };
     let m = match base {
-        BoolKind::Union => {
+        BoolOp::Union => {
             if a.0 <= b.0 {
                 a.1
             } else {
                 b.1
             }
         }
-        BoolKind::Intersect => {
+        BoolOp::Intersection => {
             if a.0 >= b.0 {
                 a.1
             } else {
                 b.1
             }
         }
-        BoolKind::Subtract => {
+        BoolOp::Difference => {
             if a.0 >= -b.0 {
                 a.1
             } else {

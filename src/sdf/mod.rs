@@ -11,9 +11,11 @@
 mod bsp_route;
 mod cull;
 mod eval;
+mod extrusion;
 mod marching_cubes;
 mod scene;
 mod shapes;
+mod shapes2d;
 mod tree;
 
 use rayon::prelude::*;
@@ -23,7 +25,7 @@ pub(crate) use cull::{Culler, Pruned};
 pub use marching_cubes::{
     BakeOptions, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL, MAX_REFINE_STEPS,
 };
-pub use scene::{FALLBACK_COLOR, MAX_POLYGON_POINTS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene};
+pub use scene::{MAX_POLYGON_POINTS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene};
 
 use crate::error::Result;
 use crate::mesh::Mesh;
@@ -34,7 +36,7 @@ impl Scene {
     /// each triangle carrying the material of the primitive that decides the surface there.
     ///
     /// Empty scenes give an empty mesh. Fails for an unbounded scene without
-    /// [`BakeOptions::bounds`], or for a cell or resolution out of range.
+    /// [`BakeOptions::region`], or for a cell or resolution out of range.
     ///
     /// ```
     /// use bspcsg::{BakeOptions, Scene};
@@ -45,6 +47,12 @@ impl Scene {
     /// assert!((mesh.volume() - 4.18879).abs() < 0.03);
     /// # Ok::<(), bspcsg::Error>(())
     /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Unbounded`](crate::Error::Unbounded) for an unbounded scene without [`BakeOptions::region`](crate::BakeOptions::region),
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for a cell, resolution, region or refinement out of range or
+    /// a surface that needs more than [`MAX_BAKE_TRIANGLES`] triangles.
     pub fn bake(&self, opts: &BakeOptions) -> Result<Mesh> {
         let Some(grid) = marching_cubes::Grid::new(&self.bound.bbox, opts)? else {
             return Ok(Mesh::default());

@@ -3,22 +3,11 @@
 //! Every function here is exact — the true signed Euclidean distance, negative inside — so it
 //! is 1-Lipschitz, which is what culling and sphere tracing rely on.
 
-use std::sync::Arc;
-
 use glam::{DVec2, DVec3};
 
+pub(crate) use super::extrusion::Extrusion;
+use super::shapes2d::Shape2;
 use crate::geom::Aabb;
-
-/// A 2D shape in the xy plane, the source of an extrusion.
-#[derive(Clone, Debug, PartialEq)]
-pub(crate) enum Shape2 {
-    /// Centred rectangle of half extents.
-    Rect { half: DVec2 },
-    /// Centred circle.
-    Circle { radius: f64 },
-    /// Simple polygon, counter-clockwise (made so by the parser).
-    Polygon { points: Arc<[DVec2]> },
-}
 
 /// A 3D primitive, centred at the origin, round ones about Y.
 #[derive(Clone, Debug, PartialEq)]
@@ -55,33 +44,14 @@ pub(crate) enum Shape {
         major: f64,
         minor: f64,
     },
-    /// A 2D shape extruded along Z over `[-half_depth, half_depth]`.
-    Extrude {
+    /// A 2D shape extruded along Z over `[-half_depth, half_depth]`, optionally twisted and
+    /// scaled towards the top.
+    Extrude(Extrusion),
+    /// A 2D shape's half-plane x ≥ 0 turned about Y by `angle` degrees (360: a full turn).
+    Revolve {
         shape: Shape2,
-        half_depth: f64,
+        angle: f64,
     },
-}
-
-impl Shape2 {
-    pub(crate) fn distance(&self, p: DVec2) -> f64 {
-        match self {
-            Shape2::Rect { half } => rect(p, *half),
-            Shape2::Circle { radius } => p.length() - radius,
-            Shape2::Polygon { points } => polygon(points, p),
-        }
-    }
-
-    /// The bounding rectangle as (min, max).
-    pub(crate) fn bounds(&self) -> (DVec2, DVec2) {
-        match self {
-            Shape2::Rect { half } => (-*half, *half),
-            Shape2::Circle { radius } => (DVec2::splat(-radius), DVec2::splat(*radius)),
-            Shape2::Polygon { points } => points.iter().fold(
-                (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-                |(lo, hi), &q| (lo.min(q), hi.max(q)),
-            ),
-        }
-    }
 }
 
 impl Shape {
@@ -109,10 +79,8 @@ impl Shape {
             Shape::Torus { major, minor } => {
                 DVec2::new(DVec2::new(p.x, p.z).length() - major, p.y).length() - minor
             }
-            Shape::Extrude { shape, half_depth } => {
-                let d = shape.distance(DVec2::new(p.x, p.y));
-                extrusion(d, p.z, *half_depth)
-            }
+            Shape::Extrude(e) => e.distance(p),
+            Shape::Revolve { shape, angle } => revolution(shape, *angle, p),
         }
     }
 
@@ -161,9 +129,14 @@ impl Shape {
             Shape::Pyramid { base, height } => b(DVec3::new(0.5 * base, 0.5 * height, 0.5 * base)),
             Shape::Plane { .. } => Aabb::new(DVec3::NEG_INFINITY, DVec3::INFINITY),
             Shape::Torus { major, minor } => b(DVec3::new(major + minor, *minor, major + minor)),
-            Shape::Extrude { shape, half_depth } => {
+            Shape::Extrude(e) => e.local_bounds(),
+            Shape::Revolve { shape, .. } => {
                 let (lo, hi) = shape.bounds();
-                Aabb::new(lo.extend(-half_depth), hi.extend(*half_depth))
+                let r = hi.x.max(0.0);
+                if lo.cmpgt(hi).any() || r == 0.0 {
+                    return Aabb::EMPTY;
+                }
+                Aabb::new(DVec3::new(-r, lo.y, -r), DVec3::new(r, hi.y, r))
             }
         }
     }
@@ -176,7 +149,7 @@ fn cuboid(p: DVec3, half: DVec3) -> f64 {
 }
 
 #[inline]
-fn rect(p: DVec2, half: DVec2) -> f64 {
+pub(super) fn rect(p: DVec2, half: DVec2) -> f64 {
     let q = p.abs() - half;
     q.max(DVec2::ZERO).length() + q.max_element().min(0.0)
 }
@@ -242,7 +215,7 @@ fn pyramid(p: DVec3, h: f64) -> f64 {
 }
 
 /// IQ's exact polygon distance: nearest edge, sign by the crossing-number rule.
-fn polygon(v: &[DVec2], p: DVec2) -> f64 {
+pub(super) fn polygon(v: &[DVec2], p: DVec2) -> f64 {
     let n = v.len();
     let mut d = (p - v[0]).length_squared();
     let mut s = 1.0;
@@ -261,9 +234,32 @@ fn polygon(v: &[DVec2], p: DVec2) -> f64 {
     s * d.sqrt()
 }
 
+/// The distance to a 2D shape's half-plane x ≥ 0 turned about Y by `angle` degrees: the 2D
+/// distance within the meridian half-plane, exact for a full turn of a profile clear of the
+/// axis and a bound otherwise (an edge on the axis, or a part beyond it, is nearer than the
+/// real boundary, never farther); a partial turn also lies within a wedge of angles, so the
+/// larger of the two distances is a bound.
+fn revolution(shape: &Shape2, angle: f64, p: DVec3) -> f64 {
+    let d = shape.distance(DVec2::new(DVec2::new(p.x, p.z).length(), p.y));
+    if angle >= 360.0 {
+        return d;
+    }
+    // The turn starts in the xy plane and carries +x towards −z; the end face's outward normal
+    // is the direction of the turn there.
+    let a = angle.to_radians();
+    let end = -a.sin() * p.x - a.cos() * p.z;
+    let wedge = if angle <= 180.0 {
+        p.z.max(end)
+    } else {
+        p.z.min(end)
+    };
+    d.max(wedge)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::sync::Arc;
 
     #[test]
     fn polygon_square_matches_rect() {

@@ -5,6 +5,7 @@ use glam::{DAffine3, DVec3};
 
 use super::shapes::Shape;
 use crate::geom::euler_degrees;
+use crate::solid::BoolOp;
 
 /// Index of a node in [`Tree::nodes`].
 pub(crate) type NodeId = u32;
@@ -20,15 +21,6 @@ pub(crate) enum SmoothKind {
     /// the two shapes blend where their distances differ by less than `k`, deepening a crease
     /// by at most `k / 4`.
     Polynomial,
-}
-
-/// The boolean a combining node applies to its children, folded left to right.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum BoolKind {
-    Union,
-    Intersect,
-    /// The first child minus each of the rest.
-    Subtract,
 }
 
 /// A node's placement in its parent's frame: `p_parent = pos + R · (scale ⊙ p_local)`, where
@@ -76,7 +68,7 @@ pub(crate) enum NodeKind {
         material: u32,
     },
     Op {
-        op: BoolKind,
+        op: BoolOp,
         /// `(kind, k)` for the smooth variants, `k` in the node's local units.
         smooth: Option<(SmoothKind, f64)>,
         children: Vec<NodeId>,

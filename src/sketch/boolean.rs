@@ -24,6 +24,7 @@ use crate::solid::BoolOp;
 
 impl Sketch {
     /// Combines two sketches. Always succeeds; the result may be empty.
+    #[must_use]
     pub fn boolean(&self, other: &Sketch, op: BoolOp) -> Sketch {
         let (box_a, box_b) = (self.aabb(), other.aabb());
         let eps = Tolerance::for_operands(&box_a, &box_b)
@@ -70,16 +71,19 @@ impl Sketch {
     }
 
     /// The points in either sketch.
+    #[must_use]
     pub fn union(&self, other: &Sketch) -> Sketch {
         self.boolean(other, BoolOp::Union)
     }
 
     /// The points in both sketches.
+    #[must_use]
     pub fn intersection(&self, other: &Sketch) -> Sketch {
         self.boolean(other, BoolOp::Intersection)
     }
 
     /// The points in `self` and not in `other`.
+    #[must_use]
     pub fn difference(&self, other: &Sketch) -> Sketch {
         self.boolean(other, BoolOp::Difference)
     }

@@ -31,6 +31,11 @@ impl Sketch {
     /// assert!(evenodd.area() < nonzero.area());
     /// # Ok::<(), bspcsg::Error>(())
     /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for a ring with fewer than
+    /// three points or a coordinate that is not finite or out of range.
     pub fn from_rings(rings: &[Vec<DVec2>], rule: FillRule) -> crate::Result<Sketch> {
         for ring in rings {
             for p in ring {
@@ -47,6 +52,10 @@ impl Sketch {
     }
 
     /// One ring filled by `rule` (see [`Sketch::from_rings`]).
+    ///
+    /// # Errors
+    ///
+    /// As [`Sketch::from_rings`].
     pub fn polygon(points: &[DVec2], rule: FillRule) -> crate::Result<Sketch> {
         Sketch::from_rings(&[points.to_vec()], rule)
     }

@@ -56,11 +56,13 @@ pub struct Region {
 
 impl Region {
     /// The outer ring, counter-clockwise.
+    #[must_use]
     pub fn outer(&self) -> &[DVec2] {
         &self.outer
     }
 
     /// The holes, each clockwise.
+    #[must_use]
     pub fn holes(&self) -> &[Vec<DVec2>] {
         &self.holes
     }
@@ -110,16 +112,19 @@ pub struct Sketch {
 
 impl Sketch {
     /// The empty sketch.
+    #[must_use]
     pub fn empty() -> Self {
         Sketch::default()
     }
 
     /// The regions.
+    #[must_use]
     pub fn regions(&self) -> &[Region] {
         &self.regions
     }
 
     /// True when the sketch covers nothing.
+    #[must_use]
     pub fn is_empty(&self) -> bool {
         self.regions.is_empty()
     }
@@ -140,6 +145,7 @@ impl Sketch {
     }
 
     /// The total length of all rings, holes included.
+    #[must_use]
     pub fn perimeter(&self) -> f64 {
         self.rings()
             .map(|r| {
@@ -151,17 +157,20 @@ impl Sketch {
     }
 
     /// The bounding box as `[min, max]`, or `None` for the empty sketch.
+    #[must_use]
     pub fn bounds(&self) -> Option<[DVec2; 2]> {
         let b = self.aabb();
         (!b.is_empty()).then(|| [b.min.truncate(), b.max.truncate()])
     }
 
     /// The tolerance carried from the boolean that made this sketch (zero for exact input).
+    #[must_use]
     pub fn carried_eps(&self) -> f64 {
         self.eps
     }
 
     /// The tolerance this sketch's own queries use: the carried one, or one relative to its box.
+    #[must_use]
     pub fn tolerance(&self) -> Tolerance {
         if self.eps > 0.0 {
             Tolerance::new(self.eps)
@@ -171,6 +180,7 @@ impl Sketch {
     }
 
     /// Where `p` lies: inside, outside, or within the sketch's tolerance of an edge.
+    #[must_use]
     pub fn contains(&self, p: DVec2) -> Containment {
         let eps = self.tolerance().eps();
         let mut winding = 0i64;
@@ -191,16 +201,27 @@ impl Sketch {
     }
 
     /// Checks the validity invariants (see the module docs).
+    #[must_use]
     pub fn report(&self) -> SketchReport {
         report::report(self)
     }
 
     /// Moves the sketch by `offset`.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for a non-finite offset or a
+    /// result out of range.
     pub fn translate(&self, offset: DVec2) -> Result<Sketch> {
         self.transform(DAffine2::from_translation(offset))
     }
 
     /// Rotates about the origin by `degrees`, counter-clockwise.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for non-finite degrees or a
+    /// result out of range.
     pub fn rotate(&self, degrees: f64) -> Result<Sketch> {
         if !degrees.is_finite() {
             return Err(Error::param("degrees", degrees, "must be finite"));
@@ -209,17 +230,30 @@ impl Sketch {
     }
 
     /// Scales uniformly about the origin; a negative factor mirrors through the origin.
+    ///
+    /// # Errors
+    ///
+    /// As [`Sketch::transform`].
     pub fn scale(&self, factor: f64) -> Result<Sketch> {
         self.scale_xy(DVec2::splat(factor))
     }
 
     /// Scales per axis about the origin; one negative factor mirrors (rings are re-wound so the
     /// sketch stays valid).
+    ///
+    /// # Errors
+    ///
+    /// As [`Sketch::transform`].
     pub fn scale_xy(&self, factors: DVec2) -> Result<Sketch> {
         self.transform(DAffine2::from_scale(factors))
     }
 
     /// Mirrors across the line through the origin along `axis`.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for a zero or non-finite
+    /// axis.
     pub fn mirror(&self, axis: DVec2) -> Result<Sketch> {
         let d = axis.try_normalize().ok_or(Error::param(
             "axis",
@@ -236,6 +270,11 @@ impl Sketch {
 
     /// Applies an invertible affine map. A map with negative determinant re-winds every ring,
     /// so outer rings stay counter-clockwise.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for a non-finite or singular
+    /// map, or a result out of range.
     pub fn transform(&self, map: DAffine2) -> Result<Sketch> {
         let det = map.matrix2.determinant();
         if !(det.is_finite() && map.translation.is_finite()) {

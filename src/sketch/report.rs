@@ -27,6 +27,7 @@ pub struct SketchReport {
 
 impl SketchReport {
     /// True when nothing is wrong.
+    #[must_use]
     pub fn is_valid(&self) -> bool {
         *self == SketchReport::default()
     }

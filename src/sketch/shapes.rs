@@ -11,6 +11,11 @@ use crate::primitives::{MAX_SEGMENTS, MIN_SEGMENTS, positive, segments_for_toler
 
 impl Sketch {
     /// A `width` × `height` rectangle centred at the origin.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for a size that is not
+    /// finite and positive or out of range.
     pub fn rectangle(width: f64, height: f64) -> Result<Sketch> {
         positive("width", width)?;
         positive("height", height)?;
@@ -26,6 +31,11 @@ impl Sketch {
     /// A circle of `radius` centred at the origin, as a regular polygon inscribed in it with
     /// enough sides that no chord strays more than `tolerance` from the circle (see
     /// [`segments_for_tolerance`](crate::segments_for_tolerance)).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for a radius or tolerance
+    /// that is not finite and positive, or a tolerance needing too many segments.
     pub fn circle(radius: f64, tolerance: f64) -> Result<Sketch> {
         let n = segments_for_tolerance(radius, tolerance)?;
         Sketch::circle_with_segments(radius, n)
@@ -33,6 +43,11 @@ impl Sketch {
 
     /// A circle of `radius` as a regular polygon of `segments` sides inscribed in it, with a
     /// vertex on +x.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for a radius that is not
+    /// finite and positive or a segment count out of range.
     pub fn circle_with_segments(radius: f64, segments: u32) -> Result<Sketch> {
         positive("radius", radius)?;
         segment_count(segments)?;
@@ -48,6 +63,11 @@ impl Sketch {
 
     /// A regular polygon with `sides` sides inscribed in a circle of `circumradius`, a vertex on
     /// +y (so a triangle points up and a square stands on a corner).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for a radius that is not
+    /// finite and positive or a side count out of range.
     pub fn regular_polygon(sides: u32, circumradius: f64) -> Result<Sketch> {
         positive("circumradius", circumradius)?;
         segment_count(sides)?;
@@ -64,6 +84,11 @@ impl Sketch {
     /// A `width` × `height` rectangle centred at the origin with corners rounded to `radius`
     /// (at most half the shorter side; 0 gives the plain rectangle), each quarter circle with
     /// enough segments for the chordal `tolerance`.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for sizes, a radius or a
+    /// tolerance out of range.
     pub fn rounded_rectangle(
         width: f64,
         height: f64,

@@ -49,6 +49,10 @@ impl Default for ExtrudeOptions {
 
 impl Sketch {
     /// The prism over the sketch from z = 0 to z = `height`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Sketch::extrude_with`].
     pub fn extrude(&self, height: f64) -> Result<Solid> {
         self.extrude_with(height, &ExtrudeOptions::default())
     }
@@ -66,6 +70,11 @@ impl Sketch {
     /// assert!((pyramid.volume() - 1.0).abs() < 1e-12);
     /// # Ok::<(), bspcsg::Error>(())
     /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for a height or option out
+    /// of range.
     pub fn extrude_with(&self, height: f64, options: &ExtrudeOptions) -> Result<Solid> {
         positive("height", height)?;
         let ExtrudeOptions {
@@ -180,6 +189,11 @@ impl Sketch {
     /// assert!((tube.volume() - 6.0 * std::f64::consts::PI).abs() < 2e-3);
     /// # Ok::<(), bspcsg::Error>(())
     /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for an angle or segment
+    /// count out of range, or a sketch that crosses the axis.
     pub fn revolve(&self, angle_deg: f64, segments: u32) -> Result<Solid> {
         if !(angle_deg.is_finite() && angle_deg > 0.0 && angle_deg <= 360.0) {
             return Err(Error::param(

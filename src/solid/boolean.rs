@@ -22,6 +22,55 @@ pub enum BoolOp {
     Difference,
 }
 
+impl BoolOp {
+    /// Every operation, in the order `union`, `intersection`, `difference`.
+    pub const ALL: [BoolOp; 3] = [BoolOp::Union, BoolOp::Intersection, BoolOp::Difference];
+
+    /// The operation's name: `union`, `intersection` or `difference` (the command line's
+    /// subcommands).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            BoolOp::Union => "union",
+            BoolOp::Intersection => "intersection",
+            BoolOp::Difference => "difference",
+        }
+    }
+}
+
+impl std::fmt::Display for BoolOp {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A name that is not a boolean operation.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown boolean operation `{0}`; expected union, intersection or difference")]
+pub struct ParseBoolOpError(String);
+
+impl std::str::FromStr for BoolOp {
+    type Err = ParseBoolOpError;
+
+    /// `union`, `intersection` or `difference`, and the scene format's spellings `intersect`
+    /// and `subtract`; ASCII case is ignored.
+    ///
+    /// ```
+    /// use bspcsg::BoolOp;
+    /// assert_eq!("subtract".parse::<BoolOp>(), Ok(BoolOp::Difference));
+    /// assert_eq!(BoolOp::Intersection.to_string(), "intersection");
+    /// assert!("xor".parse::<BoolOp>().is_err());
+    /// ```
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.to_ascii_lowercase().as_str() {
+            "union" => Ok(BoolOp::Union),
+            "intersection" | "intersect" => Ok(BoolOp::Intersection),
+            "difference" | "subtract" => Ok(BoolOp::Difference),
+            _ => Err(ParseBoolOpError(s.to_owned())),
+        }
+    }
+}
+
 /// Combines two solids. Booleans of valid solids always succeed; the result may be empty.
 ///
 /// This follows csg.js's sequence — clip A by B's tree, clip B by A's tree, clip B again
@@ -37,18 +86,51 @@ pub enum BoolOp {
 /// B's first pass sends same-facing coplanar polygons to the front and the second to the back;
 /// only fragments that met a coplanar node in the first pass can change in the second, so only
 /// those are clipped again.
+#[must_use]
 pub fn boolean(a: &Solid, b: &Solid, op: BoolOp) -> Solid {
     boolean_owned(a.clone(), b.clone(), op)
 }
 
+/// [`boolean`] with a tolerance of at least `tolerance`: the boolean uses the larger of it and
+/// the one it would choose itself (relative to where the operands meet, and never below what
+/// either carries; see the crate docs, `# Tolerance`). A larger tolerance treats vertices
+/// within it of a plane as lying on it, so faces of imprecise input that nearly coincide are
+/// merged instead of leaving slivers. The result carries the tolerance used.
+///
+/// ```
+/// use bspcsg::{BoolOp, Solid, Tolerance, boolean, boolean_with};
+/// use glam::DVec3;
+///
+/// // Two boxes 10⁻⁹ apart: two shells by default, one flush box at a tolerance of 10⁻⁶.
+/// let a = Solid::cube(1.0)?;
+/// let b = Solid::cube(1.0)?.translate(DVec3::new(1.0 + 1e-9, 0.0, 0.0))?;
+/// let exact = boolean(&a, &b, BoolOp::Union);
+/// let merged = boolean_with(&a, &b, BoolOp::Union, Tolerance::new(1e-6));
+/// assert_eq!(exact.to_mesh().report().shells.len(), 2);
+/// let report = merged.to_mesh().report();
+/// assert_eq!(report.shells.len(), 1);
+/// assert!(report.is_closed_manifold());
+/// assert!(merged.carried_eps() >= 1e-6);
+/// # Ok::<(), bspcsg::Error>(())
+/// ```
+#[must_use]
+pub fn boolean_with(a: &Solid, b: &Solid, op: BoolOp, tolerance: Tolerance) -> Solid {
+    boolean_at_least(a.clone(), b.clone(), op, tolerance)
+}
+
 pub(super) fn boolean_owned(a: Solid, b: Solid, op: BoolOp) -> Solid {
+    boolean_at_least(a, b, op, Tolerance::new(0.0))
+}
+
+fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
     let (box_a, box_b) = (a.bbox(), b.bbox());
     let tol = Tolerance::for_operands(&box_a, &box_b)
         .max(Tolerance::new(a.carried_eps()))
-        .max(Tolerance::new(b.carried_eps()));
+        .max(Tolerance::new(b.carried_eps()))
+        .max(floor);
     let eps = tol.eps();
     if a.is_empty() || b.is_empty() || !box_a.overlaps(&box_b, eps) {
-        return disjoint(a, b, op);
+        return disjoint(a, b, op, floor.eps());
     }
     let a = cut_down(a.into_polygons(), &box_b, eps);
     let b = cut_down(b.into_polygons(), &box_a, eps);
@@ -204,7 +286,7 @@ fn keep_far(polys: &[Polygon], near: &[bool], other: &Surface, keep: Label) -> V
 }
 
 /// The result when the operands cannot interact: one is empty or their boxes do not meet.
-fn disjoint(a: Solid, b: Solid, op: BoolOp) -> Solid {
+fn disjoint(a: Solid, b: Solid, op: BoolOp, floor: f64) -> Solid {
     match op {
         BoolOp::Union => {
             // Two parts of different scales: the finer tolerance serves both, but never below
@@ -218,6 +300,11 @@ fn disjoint(a: Solid, b: Solid, op: BoolOp) -> Solid {
                     .min(b.tolerance().eps())
                     .max(a.carried_eps())
                     .max(b.carried_eps()),
+            };
+            let eps = if floor > f64::MIN_POSITIVE {
+                eps.max(floor)
+            } else {
+                eps
             };
             let mut polygons = a.into_polygons();
             polygons.extend(b.into_polygons());

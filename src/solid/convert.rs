@@ -11,12 +11,14 @@ impl Solid {
     /// triangulated without zero-area triangles, and solids that touch along an edge or at a
     /// vertex returned as separate manifold shells. Each triangle carries its polygon's source
     /// id. See [`Solid::to_mesh_unrepaired`] for the plain fan triangulation.
+    #[must_use]
     pub fn to_mesh(&self) -> Mesh {
         repair::polygons_to_mesh(self.polygons(), self.tolerance().eps())
     }
 
     /// Each polygon fanned into triangles, positions welded bit for bit and nothing else:
     /// after a boolean this has T-junctions. For inspecting what a boolean produced.
+    #[must_use]
     pub fn to_mesh_unrepaired(&self) -> Mesh {
         let mut welder = Welder::with_capacity(self.corner_count() / 2);
         let mut triangles = Vec::with_capacity(self.corner_count());
@@ -54,6 +56,10 @@ impl Solid {
     /// assert!(err.to_string().contains("not closed: 3 boundary edges"));
     /// # Ok::<(), bspcsg::Error>(())
     /// ```
+    ///
+    /// # Errors
+    ///
+    /// As [`Solid::from_mesh_with`].
     pub fn from_mesh(mesh: &Mesh) -> Result<Solid> {
         Solid::from_mesh_with(mesh, &FromMeshOptions::default())
     }
@@ -61,7 +67,7 @@ impl Solid {
     /// A solid bounded by an indexed triangle mesh: one polygon per triangle, carrying the
     /// triangle's source id.
     ///
-    /// Refused with [`Error::InvalidMesh`], whose message gives the counts, when:
+    /// Refused with [`Error::InvalidMesh`](crate::Error::InvalidMesh), whose message gives the counts, when:
     /// - `sources` and `triangles` differ in length;
     /// - a triangle uses a vertex index beyond `positions`;
     /// - a position used by a triangle has a NaN or infinite coordinate (unused ones are
@@ -76,6 +82,11 @@ impl Solid {
     /// the BSP. Their edges still count when closure is checked, so a crack closed by a sliver
     /// is accepted. The empty mesh gives the empty solid. The input is taken as exact: the
     /// solid carries no tolerance.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidMesh`](crate::Error::InvalidMesh) with the [`MeshDefect`](crate::MeshDefect) in the cases listed
+    /// above.
     pub fn from_mesh_with(mesh: &Mesh, options: &FromMeshOptions) -> Result<Solid> {
         import::polygons_from_mesh(mesh, options).map(Solid::from_polygons)
     }
@@ -84,5 +95,14 @@ impl Solid {
 impl From<&Solid> for Mesh {
     fn from(solid: &Solid) -> Mesh {
         solid.to_mesh()
+    }
+}
+
+impl TryFrom<&Mesh> for Solid {
+    type Error = crate::error::Error;
+
+    /// [`Solid::from_mesh`]: the mesh checked with the default (strict) options.
+    fn try_from(mesh: &Mesh) -> Result<Solid> {
+        Solid::from_mesh(mesh)
     }
 }

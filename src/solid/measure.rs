@@ -20,6 +20,7 @@ pub enum Containment {
 
 impl Solid {
     /// The bounding box.
+    #[must_use]
     pub fn bbox(&self) -> Aabb {
         let mut b = Aabb::EMPTY;
         for p in &self.polygons {
@@ -31,6 +32,7 @@ impl Solid {
     }
 
     /// Signed volume by the divergence theorem, in f64, summed relative to the box centre.
+    #[must_use]
     pub fn volume(&self) -> f64 {
         let apex = self.bbox().center();
         self.polygons
@@ -47,11 +49,13 @@ impl Solid {
 
     /// Where `p` lies: inside, outside or on the boundary (within the solid's tolerance).
     /// For many points, build a [`PointClassifier`] once.
+    #[must_use]
     pub fn contains(&self, p: DVec3) -> Containment {
         self.classifier().classify(p)
     }
 
     /// A BSP tree of this solid for classifying many points.
+    #[must_use]
     pub fn classifier(&self) -> PointClassifier {
         PointClassifier {
             tree: Tree::build(self.polygons.clone(), self.tolerance().eps()),
@@ -67,6 +71,7 @@ pub struct PointClassifier {
 
 impl PointClassifier {
     /// Where `p` lies relative to the solid.
+    #[must_use]
     pub fn classify(&self, p: DVec3) -> Containment {
         match self.tree.classify_point(p) {
             Some(Label::Inside) => Containment::Inside,

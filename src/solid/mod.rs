@@ -15,7 +15,7 @@ mod ops;
 mod primitives;
 mod transform;
 
-pub use boolean::{BoolOp, boolean};
+pub use boolean::{BoolOp, ParseBoolOpError, boolean, boolean_with};
 pub use measure::{Containment, PointClassifier};
 pub use ops::boolean_all;
 
@@ -36,12 +36,14 @@ pub struct Solid {
 
 impl Solid {
     /// The empty solid.
+    #[must_use]
     pub fn empty() -> Self {
         Solid::default()
     }
 
     /// A solid from polygons that bound it, outward-facing. The polygons are trusted: use
     /// [`Solid::from_mesh`] for input that needs checking.
+    #[must_use]
     pub fn from_polygons(polygons: Vec<Polygon>) -> Self {
         Solid { polygons, eps: 0.0 }
     }
@@ -51,31 +53,37 @@ impl Solid {
     }
 
     /// The bounding polygons.
+    #[must_use]
     pub fn polygons(&self) -> &[Polygon] {
         &self.polygons
     }
 
     /// Takes the bounding polygons.
+    #[must_use]
     pub fn into_polygons(self) -> Vec<Polygon> {
         self.polygons
     }
 
     /// True when the solid has no polygons.
+    #[must_use]
     pub fn is_empty(&self) -> bool {
         self.polygons.is_empty()
     }
 
     /// Number of polygons.
+    #[must_use]
     pub fn polygon_count(&self) -> usize {
         self.polygons.len()
     }
 
     /// Number of polygon corners (a vertex shared by several polygons counts in each).
+    #[must_use]
     pub fn corner_count(&self) -> usize {
         self.polygons.iter().map(|p| p.vertices().len()).sum()
     }
 
     /// The tolerance carried from the boolean that made this solid (zero for exact input).
+    #[must_use]
     pub fn carried_eps(&self) -> f64 {
         self.eps
     }
@@ -84,6 +92,7 @@ impl Solid {
     /// carried from the boolean that made it, which was relative to where its operands met; for
     /// a solid no boolean made, one relative to its box. Never relative to the box of a boolean's
     /// result: a huge operand would make it swallow the small one's detail.
+    #[must_use]
     pub fn tolerance(&self) -> Tolerance {
         if self.eps > 0.0 {
             Tolerance::new(self.eps)

@@ -10,16 +10,19 @@ use super::boolean::{BoolOp, boolean, boolean_owned};
 
 impl Solid {
     /// Points in `self` or `other`.
+    #[must_use]
     pub fn union(&self, other: &Solid) -> Solid {
         boolean(self, other, BoolOp::Union)
     }
 
     /// Points in both `self` and `other`.
+    #[must_use]
     pub fn intersection(&self, other: &Solid) -> Solid {
         boolean(self, other, BoolOp::Intersection)
     }
 
     /// Points in `self` and not in `other`.
+    #[must_use]
     pub fn difference(&self, other: &Solid) -> Solid {
         boolean(self, other, BoolOp::Difference)
     }
@@ -51,13 +54,13 @@ impl Solid {
 /// use glam::DVec3;
 ///
 /// let cube = |x: f64| Solid::cube(1.0)?.translate(DVec3::new(x, 0.0, 0.0));
-/// let row = boolean_all(BoolOp::Union, [cube(0.0)?, cube(0.5)?, cube(1.0)?]);
+/// let row = boolean_all([cube(0.0)?, cube(0.5)?, cube(1.0)?], BoolOp::Union);
 /// assert!((row.volume() - 2.0).abs() < 1e-9);
-/// let cut = boolean_all(BoolOp::Difference, [cube(0.0)?, cube(0.5)?, cube(-0.75)?]);
+/// let cut = boolean_all([cube(0.0)?, cube(0.5)?, cube(-0.75)?], BoolOp::Difference);
 /// assert!((cut.volume() - 0.25).abs() < 1e-9);
 /// # Ok::<(), bspcsg::Error>(())
 /// ```
-pub fn boolean_all(op: BoolOp, solids: impl IntoIterator<Item = Solid>) -> Solid {
+pub fn boolean_all(solids: impl IntoIterator<Item = Solid>, op: BoolOp) -> Solid {
     let mut solids = solids.into_iter();
     match op {
         BoolOp::Union => Solid::union_all(solids),

@@ -14,11 +14,20 @@ impl Solid {
     /// let b = bspcsg::Solid::cuboid(glam::DVec3::new(1.0, 2.0, 3.0)).unwrap();
     /// assert!((b.volume() - 6.0).abs() < 1e-12);
     /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`] when a size is not finite and positive or beyond
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE).
     pub fn cuboid(size: DVec3) -> Result<Solid> {
         primitives::cuboid(size).map(Solid::from_polygons)
     }
 
     /// A cube of edge `size`, centred at the origin.
+    ///
+    /// # Errors
+    ///
+    /// As [`Solid::cuboid`].
     pub fn cube(size: f64) -> Result<Solid> {
         Solid::cuboid(DVec3::splat(size))
     }
@@ -30,28 +39,52 @@ impl Solid {
     /// let s = bspcsg::Solid::sphere(1.0, 64, 32).unwrap();
     /// assert!((s.volume() - 4.0 / 3.0 * std::f64::consts::PI).abs() < 0.02);
     /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`] for a radius that is not finite and positive, or segment and
+    /// ring counts out of range or over the polygon budget
+    /// ([`MAX_SEGMENTS`](crate::MAX_SEGMENTS), [`MAX_POLYGONS`](crate::MAX_POLYGONS)).
     pub fn sphere(radius: f64, segments: u32, rings: u32) -> Result<Solid> {
         primitives::sphere(radius, segments, rings).map(Solid::from_polygons)
     }
 
     /// A cylinder of `radius` along Y from `-height/2` to `height/2`, `segments` ≥ 3 around.
+    ///
+    /// # Errors
+    ///
+    /// As [`Solid::frustum`].
     pub fn cylinder(radius: f64, height: f64, segments: u32) -> Result<Solid> {
         Solid::frustum(radius, radius, height, segments)
     }
 
     /// A cone along Y: base of `radius` at `-height/2`, apex at `height/2`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Solid::frustum`].
     pub fn cone(radius: f64, height: f64, segments: u32) -> Result<Solid> {
         Solid::frustum(radius, 0.0, height, segments)
     }
 
     /// A frustum along Y: radius `r_bottom` at `-height/2`, `r_top` at `height/2`. One radius
     /// may be zero (a cone); caps are single polygons.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`] for a negative or non-finite radius, both radii zero, a
+    /// height that is not finite and positive, or a segment count out of range.
     pub fn frustum(r_bottom: f64, r_top: f64, height: f64, segments: u32) -> Result<Solid> {
         primitives::frustum(r_bottom, r_top, height, segments).map(Solid::from_polygons)
     }
 
     /// A torus about the Y axis: tube centre at distance `major` from the axis, tube radius
     /// `minor < major`; `segments` ≥ 3 around the axis, `rings` ≥ 3 around the tube.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`] for radii that are not finite and positive, `minor ≥ major`,
+    /// or counts out of range or over the polygon budget.
     pub fn torus(major: f64, minor: f64, segments: u32, rings: u32) -> Result<Solid> {
         primitives::torus(major, minor, segments, rings).map(Solid::from_polygons)
     }
@@ -70,6 +103,11 @@ impl Solid {
     /// let tetra = bspcsg::Solid::polyhedron(&v, &[[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]).unwrap();
     /// assert!((tetra.volume() - 1.0 / 6.0).abs() < 1e-12);
     /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidMesh`] with the [`MeshDefect`](crate::MeshDefect) when the input fails
+    /// the checks above.
     pub fn polyhedron<F: AsRef<[u32]>>(vertices: &[DVec3], faces: &[F]) -> Result<Solid> {
         let solid = Solid::from_polygons(primitives::polyhedron(vertices, faces)?);
         if solid.volume() <= 0.0 {

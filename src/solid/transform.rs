@@ -11,7 +11,7 @@ use crate::polygon::{Polygon, Vertices};
 impl Solid {
     /// The solid turned inside out: every polygon flipped (the complement, for booleans).
     #[must_use]
-    pub fn inverse(mut self) -> Self {
+    pub fn flipped(mut self) -> Self {
         for p in &mut self.polygons {
             p.flip();
         }
@@ -20,12 +20,22 @@ impl Solid {
 
     /// Moves the solid by `offset`. Non-finite offsets, and offsets that would move a vertex
     /// beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE), are refused.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`] for a non-finite offset or a result beyond
+    /// [`MAX_COORDINATE`].
     pub fn translate(self, offset: DVec3) -> Result<Self> {
         finite_vec("offset", offset)?;
         in_range(self.map_rigid(DQuat::IDENTITY, offset))
     }
 
     /// Rotates the solid about the origin by a quaternion (normalised here).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`] for a zero or non-finite quaternion or a result beyond
+    /// [`MAX_COORDINATE`].
     pub fn rotate(self, rotation: DQuat) -> Result<Self> {
         let q = normalized(rotation).ok_or(Error::param(
             "rotation",
@@ -36,6 +46,11 @@ impl Solid {
     }
 
     /// Rotates by `degrees` about `axis` (right-handed).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`] for a zero or non-finite axis, non-finite degrees, or a
+    /// result beyond [`MAX_COORDINATE`].
     pub fn rotate_axis_angle(self, axis: DVec3, degrees: f64) -> Result<Self> {
         finite("degrees", degrees)?;
         let axis = axis.try_normalize().ok_or(Error::param(
@@ -51,6 +66,10 @@ impl Solid {
 
     /// Rotates by Euler angles in degrees: first about X, then Y, then Z, all about the fixed
     /// world axes (`R = Rz · Ry · Rx`), the order scene documents use.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`] for non-finite angles or a result beyond [`MAX_COORDINATE`].
     pub fn rotate_euler(self, degrees: DVec3) -> Result<Self> {
         finite_vec("degrees", degrees)?;
         in_range(self.map_rigid(euler_degrees(degrees), DVec3::ZERO))
@@ -58,17 +77,30 @@ impl Solid {
 
     /// Scales uniformly about the origin. The factor must be finite and non-zero; a negative one
     /// mirrors the solid and its winding is reversed so it stays outward-facing.
+    ///
+    /// # Errors
+    ///
+    /// As [`Solid::transform`].
     pub fn scale(self, factor: f64) -> Result<Self> {
         self.scale_xyz(DVec3::splat(factor))
     }
 
     /// Scales per axis about the origin (see [`Solid::scale`]).
+    ///
+    /// # Errors
+    ///
+    /// As [`Solid::transform`].
     pub fn scale_xyz(self, factors: DVec3) -> Result<Self> {
         self.transform(DAffine3::from_scale(factors))
     }
 
     /// Applies any invertible affine map. A map with negative determinant reverses each
     /// polygon's winding so the solid stays outward-facing.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidParameter`] for a non-finite or singular map, or a result beyond
+    /// [`MAX_COORDINATE`].
     pub fn transform(self, map: DAffine3) -> Result<Self> {
         let m = map.matrix3;
         let det = m.determinant();

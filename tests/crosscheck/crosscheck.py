@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Cross-check bspcsg's booleans against manifold3d on the corpus that
-examples/crosscheck_corpus.rs writes.
+tools/crosscheck_corpus.rs writes.
 
 usage: crosscheck.py CORPUS_DIR [--jobs N] [--samples N] [--only TEXT] [--failures-only]
 

@@ -40,7 +40,7 @@ pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Re
         materials.push(input_material(path, i));
     }
     progress.step(format!("combining {} solids", solids.len()));
-    let solid = boolean_all(op, solids);
+    let solid = boolean_all(solids, op);
     progress.step("repairing (welding, closing T-junctions)");
     let mesh = solid.to_mesh();
     finish(out, format, &mesh, &materials, progress)

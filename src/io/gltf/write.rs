@@ -13,7 +13,7 @@ use super::container::glb_bytes;
 use super::uri::percent_encode;
 use crate::error::{Error, MeshDefect, Result};
 use crate::hash::FxHashMap;
-use crate::io::{DEFAULT_MATERIAL_COLOR, DEFAULT_MATERIAL_NAME, Files, OutFile, generator};
+use crate::io::{Files, OutFile, generator};
 use crate::mesh::{Material, Mesh};
 
 /// One primitive's vertex and index data, before it is laid into the buffer.
@@ -98,8 +98,10 @@ pub(crate) fn write(path: &Path, mesh: &Mesh, materials: &[Material], glb: bool)
                 .entry(part.source)
                 .or_insert_with(|| out.root.push(material_json(&m.name, m.base_color))),
             None => *default_material.get_or_insert_with(|| {
-                out.root
-                    .push(material_json(DEFAULT_MATERIAL_NAME, DEFAULT_MATERIAL_COLOR))
+                out.root.push(material_json(
+                    Material::DEFAULT_NAME,
+                    Material::DEFAULT_COLOR,
+                ))
             }),
         };
         primitives.push(out.primitive(part, material));

@@ -143,6 +143,7 @@ impl MeshReport {
     /// opposite directions, every vertex a single fan, no degenerate triangles, no invalid
     /// indices or non-finite coordinates, and every shell facing outward (cavities included).
     /// The empty mesh counts as closed (the empty solid).
+    #[must_use]
     pub fn is_closed_manifold(&self) -> bool {
         self.closed
             && self.oriented
@@ -168,6 +169,7 @@ impl Mesh {
     /// assert_eq!((report.shells.len(), report.genus), (1, Some(0)));
     /// # Ok::<(), bspcsg::Error>(())
     /// ```
+    #[must_use]
     pub fn report(&self) -> MeshReport {
         report(self)
     }

@@ -69,7 +69,7 @@ impl Grid {
 /// The region to mesh and whether it gets a padding cell on every side: the caller's bounds
 /// as they are, or the scene's bounds padded. `None` for an empty scene without bounds.
 fn region(solid_box: &Aabb, opts: &BakeOptions) -> Result<Option<(Aabb, bool)>> {
-    match opts.bounds {
+    match opts.region {
         Some(b) => {
             if !(b.min.is_finite() && b.max.is_finite()) || b.is_empty() {
                 return Err(Error::param(
@@ -88,7 +88,7 @@ fn region(solid_box: &Aabb, opts: &BakeOptions) -> Result<Option<(Aabb, bool)>> 
                 return Err(Error::Unbounded {
                     what: "the scene",
                     why: "a half-space not intersected with a bounded shape",
-                    remedy: "give BakeOptions::bounds",
+                    remedy: "give BakeOptions::region",
                 });
             }
             Ok(Some((*solid_box, true)))

@@ -12,7 +12,7 @@ pub struct BakeOptions {
     pub resolution: Option<u32>,
     /// The region to mesh. `None`: the scene's conservative bounds plus one cell on every side.
     /// A surface cut by these bounds is closed by a cap on them.
-    pub bounds: Option<Aabb>,
+    pub region: Option<Aabb>,
     /// Steps of root refinement (Illinois regula falsi) per vertex after the linear guess, at
     /// most [`MAX_REFINE_STEPS`] (it converges in a handful).
     pub refine_steps: u32,
@@ -23,7 +23,7 @@ impl Default for BakeOptions {
         BakeOptions {
             cell: None,
             resolution: None,
-            bounds: None,
+            region: None,
             refine_steps: 3,
         }
     }
@@ -31,6 +31,7 @@ impl Default for BakeOptions {
 
 impl BakeOptions {
     /// Options with a cell size.
+    #[must_use]
     pub fn with_cell(cell: f64) -> Self {
         BakeOptions {
             cell: Some(cell),
@@ -39,6 +40,7 @@ impl BakeOptions {
     }
 
     /// Options with a resolution (cells along the longest side).
+    #[must_use]
     pub fn with_resolution(resolution: u32) -> Self {
         BakeOptions {
             resolution: Some(resolution),

@@ -5,10 +5,6 @@ use serde_json::Value;
 use super::json::{fault, key_path, number, only, required, type_name};
 use crate::error::Result;
 
-/// The colour of primitives without a material, and of material ids the document uses without
-/// a materials table: linear RGBA.
-pub const FALLBACK_COLOR: [f64; 4] = [0.8, 0.8, 0.8, 1.0];
-
 /// A colour: `[r, g, b]` or `[r, g, b, a]` in linear 0..1, `"#rrggbb"` / `"#rrggbbaa"` in sRGB,
 /// or `{"base_color": …}`.
 pub(super) fn colour(v: &Value, path: &str) -> Result<[f64; 4]> {

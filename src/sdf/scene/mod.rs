@@ -19,7 +19,6 @@ use std::path::Path;
 use glam::DVec3;
 use serde_json::Value;
 
-pub use colour::FALLBACK_COLOR;
 pub use profile::RenderProfile;
 pub use shapes2d::MAX_POLYGON_POINTS;
 
@@ -67,6 +66,11 @@ pub struct Scene {
 impl Scene {
     /// Parses and checks a scene document (a bare node or the envelope; see
     /// `docs/scene-format.md`). Every fault is an [`Error::Scene`] naming its JSON path.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Scene`] naming the JSON path of the first fault: invalid JSON, an unknown or
+    /// missing field, a value out of range, an unknown material or 2D shape.
     pub fn from_json_str(json: &str) -> Result<Scene> {
         let value: Value = serde_json::from_str(json).map_err(|e| Error::Scene {
             file: None,
@@ -77,6 +81,11 @@ impl Scene {
     }
 
     /// Reads and parses a scene file.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Io`] when the file cannot be read, and [`Error::Scene`] naming the file and the
+    /// JSON path as [`Scene::from_json_str`].
     pub fn from_path(path: impl AsRef<Path>) -> Result<Scene> {
         let path = path.as_ref();
         let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
@@ -96,39 +105,45 @@ impl Scene {
     }
 
     /// Builds a scene from an already parsed JSON value.
-    pub fn from_json_value(value: &Value) -> Result<Scene> {
+    pub(crate) fn from_json_value(value: &Value) -> Result<Scene> {
         Parser::default().document(value)
     }
 
     /// The signed distance at `p`: negative inside, exact for single primitives under rigid
     /// motion and uniform scale, otherwise a bound that never overestimates.
+    #[must_use]
     pub fn distance(&self, p: DVec3) -> f64 {
         self.program.eval(p)
     }
 
     /// The material (index into [`Scene::materials`], the same as a mesh source id) of the
     /// primitive that decides the distance at `p`.
+    #[must_use]
     pub fn material_at(&self, p: DVec3) -> u32 {
         self.program.eval_material(p).1
     }
 
     /// The materials; a material's index is the source id its triangles carry.
+    #[must_use]
     pub fn materials(&self) -> &[Material] {
         &self.materials
     }
 
     /// The render profile (defaults where the document gives none).
+    #[must_use]
     pub fn render_profile(&self) -> &RenderProfile {
         &self.profile
     }
 
     /// A box holding the solid, from conservative per-node boxes; infinite on the sides where
     /// the scene is unbounded (a half-space not intersected away).
-    pub fn bounds(&self) -> Aabb {
+    #[must_use]
+    pub fn bbox(&self) -> Aabb {
         self.bound.bbox
     }
 
     /// Number of primitives (leaves) in the scene.
+    #[must_use]
     pub fn primitive_count(&self) -> usize {
         self.program.leaves.len()
     }

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use serde_json::{Map, Value};
 
 use super::Scene;
-use super::colour::{FALLBACK_COLOR, colour};
+use super::colour::colour;
 use super::json::{array, count, fault, key_path, object, only, required, string};
 use super::profile::{RenderProfile, render_profile};
 use super::shapes2d::shapes_2d;
@@ -14,8 +14,9 @@ use super::transform::transform;
 use crate::error::Result;
 use crate::mesh::Material;
 use crate::sdf::eval::Program;
-use crate::sdf::shapes::Shape2;
-use crate::sdf::tree::{BoolKind, Frame, Node, NodeId, NodeKind, Transform, Tree};
+use crate::sdf::shapes2d::Shape2;
+use crate::sdf::tree::{Frame, Node, NodeId, NodeKind, Transform, Tree};
+use crate::solid::BoolOp;
 
 #[derive(Default)]
 pub(super) struct Scope {
@@ -101,7 +102,7 @@ impl Parser {
         }
         let mut scope = Scope::default();
         if let Some(v) = m.get("sdf_2d") {
-            scope.shapes = shapes_2d(v, "$.sdf_2d")?;
+            scope.shapes = shapes_2d(v, "$.sdf_2d", &|_| None)?;
         }
         self.scopes.push(scope);
         let mut roots = Vec::new();
@@ -158,7 +159,7 @@ impl Parser {
     }
 
     fn material(&mut self, id: Option<&str>, path: &str) -> Result<u32> {
-        let name = id.unwrap_or("default");
+        let name = id.unwrap_or(Material::DEFAULT_NAME);
         if let Some(&i) = self.material_index.get(name) {
             return Ok(i);
         }
@@ -176,7 +177,7 @@ impl Parser {
         self.material_index.insert(name.to_string(), i);
         self.materials.push(Material {
             name: name.to_string(),
-            base_color: FALLBACK_COLOR,
+            base_color: Material::DEFAULT_COLOR,
         });
         Ok(i)
     }
@@ -331,7 +332,9 @@ impl Parser {
         )?;
         let mut inner = scope;
         if let Some(v) = m.get("sdf_2d") {
-            let shapes = shapes_2d(v, &key_path(path, "sdf_2d"))?;
+            let shapes = shapes_2d(v, &key_path(path, "sdf_2d"), &|id| {
+                self.lookup_2d(scope, id).cloned()
+            })?;
             self.scopes.push(Scope {
                 parent: Some(scope),
                 shapes,
@@ -360,7 +363,7 @@ pub(super) fn union_of(transform: Transform, children: Vec<NodeId>) -> Node {
     Node {
         transform,
         kind: NodeKind::Op {
-            op: BoolKind::Union,
+            op: BoolOp::Union,
             smooth: None,
             children,
         },

@@ -33,7 +33,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut solids = Vec::new();
     let mut triangles_in = 0;
     for path in &args[1..] {
-        let mesh = read_mesh(path.as_ref())?;
+        let mesh = read_mesh(path)?;
         triangles_in += mesh.triangle_count();
         solids.push(Solid::from_mesh(&mesh)?);
     }

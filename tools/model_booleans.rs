@@ -1,3 +1,9 @@
+//! Booleans of the shared real meshes (`$BSPCSG_MODELS`, else `../shared/models`) with rotated
+//! copies of themselves and of each other: time, inclusion–exclusion error, and whether each
+//! result's mesh is a closed 2-manifold. A developer's probe, not an example of the API.
+//!
+//! usage: cargo run --release --example model_booleans
+
 use bspcsg::{
     Solid,
     glam::{DQuat, DVec3},
@@ -5,8 +11,9 @@ use bspcsg::{
 };
 use std::time::Instant;
 fn load(name: &str) -> Solid {
-    let p = format!("/work/shared/models/{name}.obj");
-    Solid::from_mesh(&read_mesh(p.as_ref()).unwrap()).unwrap()
+    let dir = std::env::var("BSPCSG_MODELS").unwrap_or_else(|_| "../shared/models".into());
+    let p = format!("{dir}/{name}.obj");
+    Solid::from_mesh(&read_mesh(&p).unwrap()).unwrap()
 }
 fn check(label: &str, a: &Solid, b: &Solid) {
     let t = Instant::now();

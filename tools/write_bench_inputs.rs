@@ -12,7 +12,7 @@ use bspcsg::{Solid, write_mesh};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = std::path::PathBuf::from(std::env::args().nth(1).ok_or("usage: OUT_DIR")?);
     std::fs::create_dir_all(&dir)?;
-    let put = |name: &str, s: &Solid| write_mesh(&dir.join(name), &s.to_mesh(), &[]);
+    let put = |name: &str, s: &Solid| write_mesh(dir.join(name), &s.to_mesh(), &[]);
     for n in [32u32, 64, 128, 256] {
         let (a, b) = cases::sphere_pair(n);
         put(&format!("sphere{n}_a.obj"), &a)?;

@@ -907,7 +907,7 @@ fn main() -> ExitCode {
         }
     }
     let manifest = json!({
-        "generator": concat!("bspcsg ", env!("CARGO_PKG_VERSION"), " examples/crosscheck_corpus.rs"),
+        "generator": concat!("bspcsg ", env!("CARGO_PKG_VERSION"), " tools/crosscheck_corpus.rs"),
         "models": models_note,
         "cases": entries,
     });
