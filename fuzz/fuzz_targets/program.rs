@@ -81,7 +81,7 @@ fn operand(b: &mut Bytes, tiny: bool) -> Option<Solid> {
         solid.rotate(DQuat::from_axis_angle(axis, angle)).ok()?
     };
     let place = b.byte();
-    let offset = if place % 2 == 0 {
+    let offset = if place.is_multiple_of(2) {
         DVec3::new(
             (b.byte() % 16) as f64 - 8.0,
             (b.byte() % 16) as f64 - 8.0,

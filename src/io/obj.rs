@@ -239,10 +239,8 @@ pub(crate) fn write(path: &Path, mesh: &Mesh, materials: &[Material]) -> Files {
     );
     let mtl_path = path.with_extension("mtl");
     let with_materials = !materials.is_empty();
-    if with_materials {
-        if let Some(name) = mtl_path.file_name() {
-            let _ = writeln!(obj, "mtllib {}", name.to_string_lossy());
-        }
+    if with_materials && let Some(name) = mtl_path.file_name() {
+        let _ = writeln!(obj, "mtllib {}", name.to_string_lossy());
     }
     for p in &mesh.positions {
         // `{}` is the shortest representation that parses back to the same f64.

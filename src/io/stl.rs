@@ -19,10 +19,10 @@ const RECORD: usize = 50;
 /// Reads ASCII or binary STL.
 pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh> {
     let announced = announced_triangles(bytes);
-    if let Some(n) = announced {
-        if binary_size(n) == Some(bytes.len() as u64) {
-            return read_binary(path, bytes, n as usize);
-        }
+    if let Some(n) = announced
+        && binary_size(n) == Some(bytes.len() as u64)
+    {
+        return read_binary(path, bytes, n as usize);
     }
     if bytes.trim_ascii_start().starts_with(b"solid") {
         let ascii = read_ascii(path, bytes);

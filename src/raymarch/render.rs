@@ -165,7 +165,7 @@ pub(crate) fn render_tiles(
             let mut buf = Vec::with_capacity(t.pixels());
             shade(t, &mut buf);
             let d = done.fetch_add(1, Ordering::Relaxed) + 1;
-            if d % every == 0 || d == total {
+            if d.is_multiple_of(every) || d == total {
                 progress(d, total);
             }
             (*t, buf)

@@ -234,17 +234,18 @@ pub(crate) fn positive(s: &str) -> Result<f64, String> {
 impl Cli {
     /// The checks clap cannot express, reported as clap usage errors.
     pub(crate) fn checked(self) -> Result<Self, clap::Error> {
-        if let Command::Export(args) = &self.command {
-            if args.via == Via::Sdf && args.tolerance.is_some() {
-                let mut cli = Cli::command();
-                cli.build();
-                // The subcommand's own usage line, as clap prints for its own errors.
-                let mut export = cli.find_subcommand_mut("export").cloned().unwrap_or(cli);
-                return Err(export.error(
-                    ErrorKind::ArgumentConflict,
-                    "--tolerance applies to --via bsp only; the sdf route's resolution is --cell",
-                ));
-            }
+        if let Command::Export(args) = &self.command
+            && args.via == Via::Sdf
+            && args.tolerance.is_some()
+        {
+            let mut cli = Cli::command();
+            cli.build();
+            // The subcommand's own usage line, as clap prints for its own errors.
+            let mut export = cli.find_subcommand_mut("export").cloned().unwrap_or(cli);
+            return Err(export.error(
+                ErrorKind::ArgumentConflict,
+                "--tolerance applies to --via bsp only; the sdf route's resolution is --cell",
+            ));
         }
         Ok(self)
     }

@@ -69,7 +69,7 @@ impl Reader<'_> {
         };
         match mode {
             Mode::Triangles => {
-                if indices.len() % 3 != 0 {
+                if !indices.len().is_multiple_of(3) {
                     return Err(self.err(format!(
                         "primitive {} has {} indices, not a multiple of 3",
                         prim.index(),

@@ -76,19 +76,19 @@ fn document(path: &Path, json_bytes: &[u8]) -> Result<gltf::Document> {
     // are in range (a panic on `"POSITION": 7` with fewer accessors), so check that first.
     for (m, mesh) in root.meshes.iter().enumerate() {
         for (p, prim) in mesh.primitives.iter().enumerate() {
-            if let Some(acc) = prim.attributes.get(&Valid(json::mesh::Semantic::Positions)) {
-                if acc.value() >= root.accessors.len() {
-                    return Err(parse_error(
-                        path,
-                        None,
-                        format!(
-                            "invalid glTF: meshes[{m}].primitives[{p}] POSITION refers to \
+            if let Some(acc) = prim.attributes.get(&Valid(json::mesh::Semantic::Positions))
+                && acc.value() >= root.accessors.len()
+            {
+                return Err(parse_error(
+                    path,
+                    None,
+                    format!(
+                        "invalid glTF: meshes[{m}].primitives[{p}] POSITION refers to \
                              accessor {}, but there are {}",
-                            acc.value(),
-                            root.accessors.len()
-                        ),
-                    ));
-                }
+                        acc.value(),
+                        root.accessors.len()
+                    ),
+                ));
             }
         }
     }
