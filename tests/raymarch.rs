@@ -4,8 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use bspcsg::raymarch::{
-    Camera, CheckOptions, CheckReport, Image, Light, Projection, RenderOptions, Rgb8, Shading,
-    View, check_mesh, render_mesh, render_scene,
+    Camera, CheckOptions, CheckReport, Image, Light, LightKind, Projection, RenderOptions, Rgb8,
+    Shading, View, check_mesh, render_mesh, render_scene,
 };
 use bspcsg::{Mesh, RenderProfile, Scene, Solid, TessellationOptions};
 use glam::DVec3;
@@ -226,7 +226,7 @@ fn golden(name: &str, img: &Image) {
 fn example_scenes_match_their_golden_images() {
     for name in ["mechanical_part", "organic_blend", "extruded_profile"] {
         let scene = example(name);
-        let cam = Camera::framing(&scene.bbox(), View::Iso, (128, 96)).unwrap();
+        let cam = Camera::for_scene(&scene, View::Iso, (128, 96)).unwrap();
         let opts = RenderOptions::with_profile(scene.render_profile().clone());
         golden(name, &render_scene(&scene, &cam, &opts).unwrap());
     }
@@ -256,7 +256,7 @@ fn a_mesh_matches_its_golden_image() {
 #[test]
 fn golden_comparison_notices_a_real_change() {
     let scene = example("mechanical_part");
-    let cam = Camera::framing(&scene.bbox(), View::Iso, (128, 96)).unwrap();
+    let cam = Camera::for_scene(&scene, View::Iso, (128, 96)).unwrap();
     let opts = RenderOptions::with_profile(scene.render_profile().clone());
     let a = render_scene(&scene, &cam, &opts).unwrap().to_rgb8();
     // The same scene without its mounting holes.
@@ -427,4 +427,121 @@ fn bad_render_input_is_refused() {
     };
     let cam = Camera::look_at(DVec3::Z * 4.0, DVec3::ZERO, DVec3::Y, 40.0, (8, 8));
     assert!(render_scene(&scene, &cam, &bad_light).is_err());
+}
+
+/// The envelope around a sphere with extra fields.
+fn envelope(extra: &str) -> bspcsg::Result<Scene> {
+    Scene::from_json_str(&format!(
+        r#"{{"kind": "sdf_scene", {extra}
+            "tree": {{"kind": "sdf_primitive", "data": {{"primitive_type": "sphere", "radius": 1}}}}}}"#
+    ))
+}
+
+#[test]
+fn camera_and_lights_are_read_from_the_envelope() {
+    let s = envelope(
+        r##""camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "fov_deg": 30},
+           "lights": [{"type": "directional", "direction": [0, -1, 0], "intensity": 0.5},
+                      {"type": "point", "position": [1, 2, 3], "color": "#ff8000"}],"##,
+    )
+    .unwrap();
+    let c = s.camera().unwrap();
+    assert_eq!(c.eye, DVec3::new(0.0, 0.0, 5.0));
+    assert_eq!(c.up, DVec3::Y);
+    assert_eq!(c.projection, Projection::Perspective { fov_deg: 30.0 });
+    let l = s.lights().unwrap();
+    assert_eq!(l.len(), 2);
+    assert_eq!(l[0].intensity, 0.5);
+    assert_eq!(
+        l[1].kind,
+        LightKind::Point {
+            position: DVec3::new(1.0, 2.0, 3.0)
+        }
+    );
+    assert_eq!(l[1].color.x, 1.0);
+    assert!(
+        l[1].color.y > 0.2 && l[1].color.y < 0.25,
+        "sRGB hex decodes to linear"
+    );
+    let o = envelope(r#""camera": {"eye": [5, 0, 0], "target": [0, 0, 0], "projection": "orthographic", "height": 3},"#)
+        .unwrap();
+    assert_eq!(
+        o.camera().unwrap().projection,
+        Projection::Orthographic { height: 3.0 }
+    );
+    // None given: none reported; an empty list is "no lights".
+    let plain = envelope("").unwrap();
+    assert!(plain.camera().is_none() && plain.lights().is_none());
+    assert_eq!(
+        envelope(r#""lights": [],"#).unwrap().lights(),
+        Some(&[][..])
+    );
+    // The render options follow the document.
+    let opts = RenderOptions::for_scene(&s);
+    assert_eq!(opts.lights.len(), 2);
+    assert_eq!(
+        RenderOptions::for_scene(&plain).lights,
+        Light::default_rig()
+    );
+}
+
+#[test]
+fn camera_and_light_faults_name_their_json_path() {
+    let cases = [
+        (r#""camera": {"eye": [0, 0, 5]},"#, "$.camera.target"),
+        (
+            r#""camera": {"eye": [0, 0, 5], "target": [0, 0, 5]},"#,
+            "$.camera.target",
+        ),
+        (
+            r#""camera": {"eye": [0, 5, 0], "target": [0, 0, 0]},"#,
+            "$.camera.up",
+        ),
+        (
+            r#""camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "fov_deg": 180},"#,
+            "$.camera.fov_deg",
+        ),
+        (
+            r#""camera": {"eye": [0, 0, "x"], "target": [0, 0, 0]},"#,
+            "$.camera.eye[2]",
+        ),
+        (
+            r#""camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "fov": 30},"#,
+            "$.camera.fov",
+        ),
+        (
+            r#""camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "projection": "orthographic"},"#,
+            "$.camera.height",
+        ),
+        (
+            r#""camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "projection": "fisheye"},"#,
+            "$.camera.projection",
+        ),
+        (r#""lights": {"type": "point"},"#, "$.lights"),
+        (
+            r#""lights": [{"type": "spot", "position": [0, 0, 0]}],"#,
+            "$.lights[0].type",
+        ),
+        (
+            r#""lights": [{"type": "directional", "direction": [0, 0, 0]}],"#,
+            "$.lights[0].direction",
+        ),
+        (r#""lights": [{"type": "point"}],"#, "$.lights[0].position"),
+        (
+            r#""lights": [{"type": "point", "position": [0, 0, 0], "intensity": -1}],"#,
+            "$.lights[0].intensity",
+        ),
+        (
+            r#""lights": [{"type": "point", "position": [0, 0, 0], "color": [1, 2]}],"#,
+            "$.lights[0].color",
+        ),
+        (
+            r#""lights": [{"type": "directional", "position": [0, 0, 0]}],"#,
+            "$.lights[0].position",
+        ),
+    ];
+    for (extra, path) in cases {
+        let err = envelope(extra).unwrap_err().to_string();
+        assert!(err.starts_with(&format!("{path}:")), "{extra} → {err}");
+    }
 }

@@ -50,7 +50,7 @@ fn render_and_check_on_a_small_stack() {
     );
     let (lit, passed, cast) = pool.install(|| {
         let scene = Scene::from_path(path).unwrap();
-        let camera = Camera::framing(&scene.bbox(), View::Iso, (96, 72)).unwrap();
+        let camera = Camera::for_scene(&scene, View::Iso, (96, 72)).unwrap();
         let opts = RenderOptions::with_profile(scene.render_profile().clone());
         let image = render_scene(&scene, &camera, &opts).unwrap();
         let tol = scene.bbox().diagonal() / 500.0;

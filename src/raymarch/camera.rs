@@ -5,27 +5,13 @@ use glam::DVec3;
 
 use crate::error::{Error, Result};
 use crate::geom::Aabb;
+use crate::sdf::{BakeOptions, Projection, Scene, SceneCamera};
 
 /// The largest image side accepted, and the most pixels: a 16k × 16k image is already 1 GiB
 /// of pixels in flight.
 pub const MAX_IMAGE_SIDE: u32 = 16_384;
 /// The most pixels of one image (64 megapixels).
 pub const MAX_IMAGE_PIXELS: u64 = 64 << 20;
-
-/// How the camera maps the scene to the image.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Projection {
-    /// A pinhole with the vertical field of view in degrees (0 < fov < 180).
-    Perspective {
-        /// Vertical field of view, degrees.
-        fov_deg: f64,
-    },
-    /// Parallel rays; `height` is the extent of the world seen from bottom to top of the image.
-    Orthographic {
-        /// World units from the bottom to the top of the image.
-        height: f64,
-    },
-}
 
 /// A named direction to look from, for the default framing.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -121,6 +107,36 @@ impl Camera {
         }
     }
 
+    /// A scene's own camera with an image size.
+    #[must_use]
+    pub fn from_scene(c: &SceneCamera, size: (u32, u32)) -> Camera {
+        Camera {
+            eye: c.eye,
+            target: c.target,
+            up: c.up,
+            projection: c.projection,
+            width: size.0,
+            height: size.1,
+        }
+    }
+
+    /// The scene's own camera, or else the default framing of its solid from `view`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Camera::framing`] (an empty or unbounded scene without a camera, an image size out
+    /// of range), or [`Camera::validate`] for the scene's camera.
+    pub fn for_scene(scene: &Scene, view: View, size: (u32, u32)) -> Result<Camera> {
+        match scene.camera() {
+            Some(c) => {
+                let cam = Camera::from_scene(c, size);
+                cam.validate()?;
+                Ok(cam)
+            }
+            None => Camera::framing(&framing_bounds(scene), view, size),
+        }
+    }
+
     /// The default camera for a bounded box: the named view, the whole box in the picture with
     /// a small margin. Fails for an empty or unbounded box (give a camera then).
     ///
@@ -155,17 +171,43 @@ impl Camera {
             View::Side => (DVec3::X, DVec3::Y),
             View::Top => (DVec3::Y, DVec3::NEG_Z),
         };
-        // The bounding sphere must fit the narrower of the two fields of view.
-        let margin = 1.1;
+        // The box's corners in the camera's frame (right, up, towards the eye), about its
+        // centre: every one must fall inside the image with a small margin.
+        let back = dir;
+        let right = up.cross(back).normalize();
+        let true_up = back.cross(right);
+        let corners: Vec<DVec3> = (0..8)
+            .map(|i| {
+                let p = DVec3::new(
+                    if i & 1 == 0 {
+                        bounds.min.x
+                    } else {
+                        bounds.max.x
+                    },
+                    if i & 2 == 0 {
+                        bounds.min.y
+                    } else {
+                        bounds.max.y
+                    },
+                    if i & 4 == 0 {
+                        bounds.min.z
+                    } else {
+                        bounds.max.z
+                    },
+                ) - c;
+                DVec3::new(p.dot(right), p.dot(true_up), p.dot(back))
+            })
+            .collect();
+        let margin = 1.08;
         let cam = if view == View::Iso {
             let fov_deg: f64 = 35.0;
-            let half = (0.5 * fov_deg).to_radians();
-            let half_narrow = if aspect >= 1.0 {
-                half
-            } else {
-                (half.tan() * aspect).atan()
-            };
-            let dist = margin * radius / half_narrow.sin();
+            let tan_v = (0.5 * fov_deg).to_radians().tan();
+            let tan_h = tan_v * aspect;
+            // A corner at depth z towards the eye is d − z in front of it.
+            let dist = corners
+                .iter()
+                .map(|k| k.z + margin * (k.x.abs() / tan_h).max(k.y.abs() / tan_v))
+                .fold(radius * 1e-3, f64::max);
             Camera {
                 eye: c + dir * dist,
                 target: c,
@@ -175,12 +217,17 @@ impl Camera {
                 height: size.1,
             }
         } else {
-            let h = 2.0 * margin * radius / aspect.min(1.0);
+            let half = corners
+                .iter()
+                .map(|k| k.y.abs().max(k.x.abs() / aspect))
+                .fold(radius * 1e-3, f64::max);
             Camera {
                 eye: c + dir * (2.0 * radius + 1.0),
                 target: c,
                 up,
-                projection: Projection::Orthographic { height: h },
+                projection: Projection::Orthographic {
+                    height: 2.0 * margin * half,
+                },
                 width: size.0,
                 height: size.1,
             }
@@ -336,6 +383,24 @@ impl Frame {
             ])
         };
         (slab(z0), slab(z1))
+    }
+}
+
+/// A box around the scene's solid for framing it. The per-node boxes are conservative (smooth
+/// blends and stretched primitives widen them), so a coarse marching-cubes pass (48 cells a
+/// side, a few milliseconds) finds the solid's real extent; the conservative box is the
+/// fallback.
+#[must_use]
+pub fn framing_bounds(scene: &Scene) -> Aabb {
+    let b = scene.bbox();
+    if b.is_empty() || !(b.min.is_finite() && b.max.is_finite()) {
+        return b;
+    }
+    const CELLS: u32 = 48;
+    let cell = b.size().max_element() / CELLS as f64;
+    match scene.bake(&BakeOptions::with_resolution(CELLS)) {
+        Ok(mesh) if !mesh.is_empty() => mesh.bbox().expanded(cell).intersection(&b),
+        _ => b,
     }
 }
 

@@ -16,7 +16,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::bvh::MeshBvh;
-use super::camera::{Camera, View};
+use super::camera::{Camera, View, framing_bounds};
 use super::image::{Rgb8, encode_srgb};
 use super::march::SceneTracer;
 use super::render::{RenderOptions, TILE, Tile};
@@ -397,7 +397,7 @@ fn ray_views(
     tol: f64,
     opts: &CheckOptions,
 ) -> Result<RayViews> {
-    let frame_box = scene.bbox().union(&bvh.bounds());
+    let frame_box = framing_bounds(scene).union(&bvh.bounds());
     let n = opts.ray_size;
     let mut render = RenderOptions::with_profile(scene.render_profile().clone());
     // A fixed threshold well inside the tolerance: depths are compared, not pictures.

@@ -20,13 +20,15 @@ mod light;
 mod march;
 mod render;
 
+/// The scene document's view types, used by the renderer as they are.
+pub use crate::sdf::{DEFAULT_FOV_DEG, Light, LightKind, Projection, SceneCamera};
 pub use bvh::{MeshBvh, MeshHit};
-pub use camera::{Camera, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, Projection, Ray, View};
+pub use camera::{Camera, MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE, Ray, View, framing_bounds};
 pub use check::{
     CheckOptions, CheckReport, CheckThresholds, DistanceStats, RayStats, SignStats, check_mesh,
 };
 pub use image::{Image, Rgb8};
-pub use light::{DEFAULT_AMBIENT, Light, LightKind};
+pub use light::DEFAULT_AMBIENT;
 pub use render::{RenderOptions, Shading};
 
 use crate::error::Result;

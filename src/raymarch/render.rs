@@ -7,9 +7,10 @@ use rayon::prelude::*;
 
 use super::camera::Frame;
 use super::image::Image;
-use super::light::{DEFAULT_AMBIENT, Light};
+use super::light::DEFAULT_AMBIENT;
 use crate::geom::Aabb;
 use crate::sdf::RenderProfile;
+use crate::sdf::{Light, Scene};
 
 /// How a mesh's surface normal is chosen.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -63,6 +64,18 @@ impl RenderOptions {
     pub fn with_profile(profile: RenderProfile) -> Self {
         RenderOptions {
             profile,
+            ..Default::default()
+        }
+    }
+
+    /// What the scene document asks for: its render profile, and its lights or, when it names
+    /// none, the default key + fill pair.
+    pub fn for_scene(scene: &Scene) -> Self {
+        RenderOptions {
+            profile: scene.render_profile().clone(),
+            lights: scene
+                .lights()
+                .map_or_else(Light::default_rig, <[Light]>::to_vec),
             ..Default::default()
         }
     }

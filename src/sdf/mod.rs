@@ -25,7 +25,10 @@ pub(crate) use cull::{Culler, Pruned};
 pub use marching_cubes::{
     BakeOptions, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL, MAX_REFINE_STEPS,
 };
-pub use scene::{MAX_POLYGON_POINTS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene};
+pub use scene::{
+    DEFAULT_FOV_DEG, Light, LightKind, MAX_POLYGON_POINTS, MAX_SCENE_MAGNITUDE, Projection,
+    RenderProfile, Scene, SceneCamera,
+};
 
 use crate::error::Result;
 use crate::mesh::Mesh;

@@ -3,6 +3,8 @@
 
 #![allow(dead_code)]
 
+pub mod run;
+
 use std::path::PathBuf;
 
 use bspcsg::{Mesh, MeshReport, Solid};

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use bspcsg::Format;
+use bspcsg::raymarch::{MAX_IMAGE_PIXELS, MAX_IMAGE_SIDE};
 use clap::error::ErrorKind;
 use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 
@@ -22,6 +23,8 @@ use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
   bspcsg info drilled.obj --json
   bspcsg convert scan.stl -o scan.gltf
   bspcsg export examples/scenes/mechanical_part.json -o part.glb --via sdf
+  bspcsg render examples/scenes/mechanical_part.json -o part.png
+  bspcsg check examples/scenes/mechanical_part.json part.glb
 
 ",
         exit_codes!()
@@ -122,6 +125,51 @@ Example:
         exit_codes!()
     ))]
     Export(ExportArgs),
+
+    /// Render a scene document (ray marched) or a mesh file (ray cast) to a PNG image.
+    ///
+    /// A scene is drawn with its own camera and lights when the document has them; otherwise
+    /// the default camera frames its bounds and a key + fill light pair lights it. A mesh file
+    /// (closed or not) is framed and lit the same way. Shadows and ambient occlusion follow
+    /// the scene's render profile (`shadow_steps`, `ao_steps`).
+    #[command(after_help = concat!(
+        "Examples:
+  bspcsg render examples/scenes/mechanical_part.json -o part.png
+  bspcsg render examples/scenes/organic_blend.json -o blend.png --size 400x300 --view front
+  bspcsg render examples/scenes/mechanical_part.json -o part-mesh.png --via bsp
+  bspcsg render fandisk.obj -o fandisk.png --eye 3,2,4 --target 0,0,0
+  bspcsg render examples/scenes/mechanical_part.json -o spin.png --turntable 36
+
+",
+        exit_codes!()
+    ))]
+    Render(RenderArgs),
+
+    /// Check that a mesh is the surface of a scene's distance field.
+    ///
+    /// MESH is a mesh file, or, when absent, the scene's own export by --via (made as
+    /// `bspcsg export` makes it). Four measures, each against a threshold that follows from the
+    /// tolerance: surface distance (|SDF| on the mesh: max and p99 ≤ T), coverage (the mesh's
+    /// distance from points of the SDF's surface: max ≤ T), rays (512×512 rays from three
+    /// views: ≥ 99.5 % agree on hit or miss, depth difference p99 ≤ 2T), sign (inside/outside
+    /// agreement at points 2T or farther from the surface: ≥ 99.9 %). T is --tolerance, or:
+    /// 2 × the chordal tolerance of --via bsp, the cell of --via sdf, 1/250 of the scene's
+    /// bounding diagonal for a mesh file. Exit 3 when any measure fails, naming it and the
+    /// worst place.
+    #[command(after_help = concat!(
+        "JSON keys (--json): passed, tolerance, diagonal, thresholds, surface, coverage, rays, sign,
+failures. surface and coverage: samples, max, p99, mean, worst ([x, y, z]). rays: rays,
+agreement_pct, depth_p99, depth_max, worst. sign: samples, agreement_pct, worst.
+
+Examples:
+  bspcsg check examples/scenes/mechanical_part.json
+  bspcsg check examples/scenes/organic_blend.json --via sdf --json
+  bspcsg check examples/scenes/mechanical_part.json part.glb --tolerance 0.02 --image diff.png
+
+",
+        exit_codes!()
+    ))]
+    Check(CheckArgs),
 }
 
 #[derive(Args)]
@@ -191,6 +239,141 @@ pub(crate) struct ExportArgs {
     /// longest side), and of smooth blends in the bsp route (default: 4 × tolerance).
     #[arg(long, value_name = "H", value_parser = positive, allow_negative_numbers = true)]
     pub(crate) cell: Option<f64>,
+}
+
+#[derive(Args)]
+pub(crate) struct RenderArgs {
+    /// A scene document (.json) or a mesh file (.obj, .stl, .gltf, .glb).
+    pub(crate) input: PathBuf,
+
+    /// The PNG to write (written whole or not at all; missing directories are created).
+    /// With --turntable, frames go to OUT-000.png, OUT-001.png …
+    #[arg(short, long, value_name = "OUT.png")]
+    pub(crate) output: PathBuf,
+
+    /// Image size in pixels.
+    #[arg(long, value_name = "WxH", default_value = "800x600", value_parser = image_size)]
+    pub(crate) size: (u32, u32),
+
+    /// A default view: iso (three-quarter, perspective) or front, side, top (orthographic).
+    /// Used when the scene names no camera.
+    #[arg(long, value_enum, conflicts_with_all = ["eye", "target"])]
+    pub(crate) view: Option<ViewArg>,
+
+    /// The eye position (the target defaults to the centre of the bounds).
+    #[arg(long, value_name = "X,Y,Z", value_parser = point, allow_hyphen_values = true)]
+    pub(crate) eye: Option<[f64; 3]>,
+
+    /// The point at the centre of the image (needs --eye).
+    #[arg(long, value_name = "X,Y,Z", value_parser = point, allow_hyphen_values = true, requires = "eye")]
+    pub(crate) target: Option<[f64; 3]>,
+
+    /// For a scene: render the distance field itself (sdf), or the mesh of the BSP route
+    /// (bsp) or of marching cubes (mc), as `bspcsg export` makes them.
+    #[arg(long, value_enum, default_value_t = RenderVia::Sdf)]
+    pub(crate) via: RenderVia,
+
+    /// Facet shading for meshes (default: smooth, keeping creases sharper than 35°).
+    #[arg(long)]
+    pub(crate) flat: bool,
+
+    /// Write N frames turning the camera once around the vertical axis through the target.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=3600))]
+    pub(crate) turntable: Option<u32>,
+}
+
+#[derive(Args)]
+pub(crate) struct CheckArgs {
+    /// The scene document (JSON; see docs/scene-format.md).
+    pub(crate) scene: PathBuf,
+
+    /// The mesh to check (.obj, .stl, .gltf, .glb); default: the scene's own export by --via.
+    pub(crate) mesh: Option<PathBuf>,
+
+    /// Which export of the scene to check when no MESH is given.
+    #[arg(long, value_enum, default_value_t = Via::Bsp)]
+    pub(crate) via: Via,
+
+    /// The tolerance T the thresholds follow from, in scene units.
+    #[arg(long, value_name = "T", value_parser = positive, allow_negative_numbers = true)]
+    pub(crate) tolerance: Option<f64>,
+
+    /// Rays per side of each of the three views.
+    #[arg(long, value_name = "N", default_value_t = 512, value_parser = clap::value_parser!(u32).range(16..=4096))]
+    pub(crate) rays: u32,
+
+    /// Print the report as JSON on stdout.
+    #[arg(long)]
+    pub(crate) json: bool,
+
+    /// Write the ray views side by side as a PNG: grey where both agree, red where only the
+    /// SDF is hit, blue where only the mesh is, yellow where depths differ by more than T.
+    #[arg(long, value_name = "DIFF.png")]
+    pub(crate) image: Option<PathBuf>,
+}
+
+/// `--view` values.
+#[derive(Clone, Copy, ValueEnum)]
+pub(crate) enum ViewArg {
+    Iso,
+    Front,
+    Side,
+    Top,
+}
+
+/// `render --via` values.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub(crate) enum RenderVia {
+    /// Ray march the distance field.
+    Sdf,
+    /// Ray cast the BSP route's mesh.
+    Bsp,
+    /// Ray cast the marching-cubes mesh.
+    Mc,
+}
+
+/// `WxH`, each side at least 1 and the image within the renderer's limits.
+pub(crate) fn image_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WIDTHxHEIGHT, e.g. 800x600, found {s:?}"))?;
+    let side = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .map_err(|e| format!("{v:?} is not a pixel count: {e}"))
+    };
+    let (w, h) = (side(w)?, side(h)?);
+    if w == 0 || h == 0 {
+        return Err(format!(
+            "the image must be at least 1x1 pixels, found {w}x{h}"
+        ));
+    }
+    if w > MAX_IMAGE_SIDE || h > MAX_IMAGE_SIDE || w as u64 * h as u64 > MAX_IMAGE_PIXELS {
+        return Err(format!(
+            "{w}x{h} is too large: at most {MAX_IMAGE_SIDE} pixels a side and {} megapixels",
+            MAX_IMAGE_PIXELS >> 20
+        ));
+    }
+    Ok((w, h))
+}
+
+/// `X,Y,Z`, three finite numbers.
+pub(crate) fn point(s: &str) -> Result<[f64; 3], String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 3 {
+        return Err(format!("expected X,Y,Z, found {s:?}"));
+    }
+    let mut p = [0.0; 3];
+    for (v, part) in p.iter_mut().zip(&parts) {
+        *v = part
+            .trim()
+            .parse::<f64>()
+            .map_err(|e| format!("{part:?} is not a number: {e}"))?;
+        if !v.is_finite() {
+            return Err(format!("{part:?} is not a finite number"));
+        }
+    }
+    Ok(p)
 }
 
 /// `--format` values.

@@ -1,6 +1,6 @@
 //! `export`: a scene document to a mesh, by the BSP route or by marching cubes.
 
-use bspcsg::{BakeOptions, Error, Scene, TessellationOptions};
+use bspcsg::{BakeOptions, Error, Mesh, Scene, TessellationOptions};
 
 use crate::cli::{ExportArgs, Via};
 use crate::failure::Failure;
@@ -22,25 +22,34 @@ pub(crate) fn export(args: &ExportArgs, progress: &Progress) -> Result<(), Failu
     };
     progress.step(format!("reading {}", args.scene.display()));
     let scene = Scene::from_path(&args.scene).map_err(in_scene)?;
-    let mesh = match args.via {
+    let mesh =
+        scene_mesh(&scene, args.via, args.tolerance, args.cell, progress).map_err(in_scene)?;
+    finish(out, format, &mesh, scene.materials(), progress)
+}
+
+/// The scene's mesh by either route, as `export` makes it (also for `render` and `check`).
+pub(crate) fn scene_mesh(
+    scene: &Scene,
+    via: Via,
+    tolerance: Option<f64>,
+    cell: Option<f64>,
+    progress: &Progress,
+) -> Result<Mesh, Error> {
+    Ok(match via {
         Via::Bsp => {
             progress.step("tessellating and combining");
-            let options = TessellationOptions {
-                tolerance: args.tolerance,
-                cell: args.cell,
-            };
-            let solid = scene.to_solid(&options).map_err(in_scene)?;
+            let options = TessellationOptions { tolerance, cell };
+            let solid = scene.to_solid(&options)?;
             progress.step("repairing (welding, closing T-junctions)");
             solid.to_mesh()
         }
         Via::Sdf => {
             progress.step("baking by marching cubes");
             let options = BakeOptions {
-                cell: args.cell,
+                cell,
                 ..BakeOptions::default()
             };
-            scene.bake(&options).map_err(in_scene)?
+            scene.bake(&options)?
         }
-    };
-    finish(out, format, &mesh, scene.materials(), progress)
+    })
 }

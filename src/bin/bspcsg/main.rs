@@ -21,10 +21,13 @@ macro_rules! exit_codes {
      unknown extension, an invalid scene document); nothing is written
   2  invalid geometry: an input mesh that does not bound a solid (open, non-manifold,
      inside out; --allow-open goes on anyway), or a result the output format cannot hold
-     (coordinates beyond float32); nothing is written"
+     (coordinates beyond float32); nothing is written
+  3  check: the mesh disagrees with the scene (each failed measure is named with its
+     value, its limit and the worst place)"
     };
 }
 
+mod check;
 mod cli;
 mod combine;
 mod convert;
@@ -33,6 +36,7 @@ mod failure;
 mod info;
 mod output;
 mod progress;
+mod render;
 
 use cli::{Cli, Command};
 use output::print_stderr;
@@ -58,6 +62,8 @@ fn main() -> ExitCode {
         Command::Info(args) => info::info(&args, &progress),
         Command::Convert(args) => convert::convert(&args, &progress),
         Command::Export(args) => export::export(&args, &progress),
+        Command::Render(args) => render::render(&args, &progress),
+        Command::Check(args) => check::check(&args, &progress),
     };
     progress.finish();
     match result {

@@ -13,6 +13,7 @@ mod primitive;
 mod profile;
 mod shapes2d;
 mod transform;
+mod view;
 
 use std::path::Path;
 
@@ -21,6 +22,7 @@ use serde_json::Value;
 
 pub use profile::RenderProfile;
 pub use shapes2d::MAX_POLYGON_POINTS;
+pub use view::{DEFAULT_FOV_DEG, Light, LightKind, Projection, SceneCamera};
 
 use super::eval::{Bound, Program};
 use super::tree::{NodeId, Tree};
@@ -61,6 +63,8 @@ pub struct Scene {
     pub(crate) bound: Bound,
     materials: Vec<Material>,
     profile: RenderProfile,
+    camera: Option<SceneCamera>,
+    lights: Option<Vec<Light>>,
 }
 
 impl Scene {
@@ -133,6 +137,18 @@ impl Scene {
     #[must_use]
     pub fn render_profile(&self) -> &RenderProfile {
         &self.profile
+    }
+
+    /// The document's camera, if it gives one.
+    #[must_use]
+    pub fn camera(&self) -> Option<&SceneCamera> {
+        self.camera.as_ref()
+    }
+
+    /// The document's lights, if it gives a `lights` list (possibly empty: ambient only).
+    #[must_use]
+    pub fn lights(&self) -> Option<&[Light]> {
+        self.lights.as_deref()
     }
 
     /// A box holding the solid, from conservative per-node boxes; infinite on the sides where

@@ -11,6 +11,7 @@ use super::json::{array, count, fault, key_path, object, only, required, string}
 use super::profile::{RenderProfile, render_profile};
 use super::shapes2d::shapes_2d;
 use super::transform::transform;
+use super::view::{Light, SceneCamera, camera, lights};
 use crate::error::Result;
 use crate::mesh::Material;
 use crate::sdf::eval::Program;
@@ -22,6 +23,14 @@ use crate::solid::BoolOp;
 pub(super) struct Scope {
     parent: Option<usize>,
     shapes: HashMap<String, Shape2>,
+}
+
+/// The envelope's settings for seeing the scene.
+#[derive(Default)]
+struct Header {
+    profile: RenderProfile,
+    camera: Option<SceneCamera>,
+    lights: Option<Vec<Light>>,
 }
 
 #[derive(Default)]
@@ -45,9 +54,9 @@ impl Parser {
                 "expected a node (with `op` or `kind`) or a scene envelope (with `tree` or `nodes`)",
             ));
         }
-        let (root, profile) = if is_node {
+        let (root, header) = if is_node {
             self.scopes.push(Scope::default());
-            (self.node_tree(v, "$".into(), 0)?, RenderProfile::default())
+            (self.node_tree(v, "$".into(), 0)?, Header::default())
         } else {
             self.envelope(m)?
         };
@@ -59,13 +68,15 @@ impl Parser {
             program,
             bound,
             materials: self.materials,
-            profile,
+            profile: header.profile,
+            camera: header.camera,
+            lights: header.lights,
         })
     }
 
     /// The scene envelope: header fields, materials, 2D shapes, then `tree` and `nodes`, all
     /// united under one root.
-    fn envelope(&mut self, m: &Map<String, Value>) -> Result<(NodeId, RenderProfile)> {
+    fn envelope(&mut self, m: &Map<String, Value>) -> Result<(NodeId, Header)> {
         only(
             m,
             "$",
@@ -74,6 +85,8 @@ impl Parser {
                 "version",
                 "name",
                 "render_profile",
+                "camera",
+                "lights",
                 "materials",
                 "sdf_2d",
                 "tree",
@@ -93,9 +106,13 @@ impl Parser {
         if let Some(v) = m.get("version") {
             count(v, "$.version", 1)?;
         }
-        let profile = match m.get("render_profile") {
-            Some(v) => render_profile(v, "$.render_profile")?,
-            None => RenderProfile::default(),
+        let header = Header {
+            profile: match m.get("render_profile") {
+                Some(v) => render_profile(v, "$.render_profile")?,
+                None => RenderProfile::default(),
+            },
+            camera: m.get("camera").map(|v| camera(v, "$.camera")).transpose()?,
+            lights: m.get("lights").map(|v| lights(v, "$.lights")).transpose()?,
         };
         if let Some(v) = m.get("materials") {
             self.material_table(v, "$.materials")?;
@@ -117,7 +134,7 @@ impl Parser {
             1 => roots[0],
             _ => self.tree.push(union_of(Transform::default(), roots)),
         };
-        Ok((root, profile))
+        Ok((root, header))
     }
 
     /// The envelope's `nodes`: trees placed by a transform each, appended to `roots`.

@@ -20,7 +20,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     paths.sort();
     for path in paths {
         let scene = Scene::from_path(&path)?;
-        let camera = Camera::framing(&scene.bbox(), View::Iso, size)?;
+        let camera = Camera::for_scene(&scene, View::Iso, size)?;
         let opts = RenderOptions::with_profile(scene.render_profile().clone());
         let start = Instant::now();
         let image = render_scene(&scene, &camera, &opts)?;
