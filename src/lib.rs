@@ -23,6 +23,24 @@
 //! 2-manifold output), and [`Scene::to_solid`] by tessellating each primitive and combining them
 //! with this crate's booleans.
 //!
+//! # Sketches
+//!
+//! A [`Sketch`] is a 2D region of the xy plane (polygons with holes). Its booleans cut each
+//! operand's edges by a BSP tree of the other's, each edge a knife whose line splits what it
+//! meets into in, on and out parts; [`Sketch::extrude_with`] (twist, taper to a point) and
+//! [`Sketch::revolve`] (about Y) turn it into a [`Solid`].
+//!
+//! ```
+//! use bspcsg::Sketch;
+//! use glam::DVec2;
+//! let washer = &Sketch::circle(1.0, 1e-3)? - &Sketch::circle(0.5, 1e-3)?;
+//! assert_eq!(washer.extrude(0.2)?.to_mesh().report().genus, Some(1));
+//! // Turned about the y axis, the washer is a torus with a torus-shaped cavity: two shells.
+//! let hollow = washer.translate(DVec2::new(2.0, 0.0))?.revolve(360.0, 64)?;
+//! assert_eq!(hollow.to_mesh().report().shells.len(), 2);
+//! # Ok::<(), bspcsg::Error>(())
+//! ```
+//!
 //! # Conventions
 //!
 //! Right-handed, Y up; primitives are centred at the origin and cylinders run along Y. Faces
