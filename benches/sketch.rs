@@ -1,4 +1,5 @@
-//! 2D boolean benchmarks: two 10,000-vertex random star polygons, and 1,000 circles united.
+//! 2D boolean benchmarks: two 10,000-vertex random star polygons, 1,000 circles united, and a
+//! plate drilled with 400 holes one at a time.
 
 use bspcsg::Sketch;
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -20,6 +21,12 @@ fn stars(c: &mut Criterion) {
     let circles = cases::random_circles(1000, 3);
     group.bench_function("union_1000_circles", |bench| {
         bench.iter(|| Sketch::union_all(circles.clone()))
+    });
+    // A plate drilled hole by hole: each boolean's tree of the plate covers only the hole's box.
+    let plate = Sketch::rectangle(20.0, 20.0).unwrap();
+    let holes = cases::hole_grid(20);
+    group.bench_function("plate_minus_400_holes_one_by_one", |bench| {
+        bench.iter(|| holes.iter().fold(plate.clone(), |p, h| &p - h))
     });
     group.finish();
 }

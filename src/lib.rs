@@ -5,7 +5,7 @@
 //!
 //! ```
 //! use bspcsg::Solid;
-//! use glam::DVec3;
+//! use bspcsg::glam::DVec3; // the glam version this crate uses, re-exported
 //!
 //! let block = Solid::cuboid(DVec3::new(2.0, 1.0, 1.0))?;
 //! let hole = Solid::cylinder(0.3, 2.0, 48)?;
@@ -16,12 +16,38 @@
 //! # Ok::<(), bspcsg::Error>(())
 //! ```
 //!
+//! # Features
+//!
+//! - `cli` (default): the `bspcsg` command line tool and the dependencies only it needs
+//!   (`clap`, `indicatif`). Libraries depending on this crate can turn it off with
+//!   `default-features = false`; the whole library API stays.
+//!
+//! The modules, bottom to top, and the import order CI enforces are in `ARCHITECTURE.md`.
+//!
 //! # Scenes
 //!
 //! A [`Scene`] is a tree of signed distance functions read from JSON (the format is in
 //! `docs/scene-format.md`). It meshes two ways: [`Scene::bake`] by marching cubes (closed
 //! 2-manifold output), and [`Scene::to_solid`] by tessellating each primitive and combining them
 //! with this crate's booleans.
+//!
+//! # Sketches
+//!
+//! A [`Sketch`] is a 2D region of the xy plane (polygons with holes). Its booleans cut each
+//! operand's edges by a BSP tree of the other's, each edge a knife whose line splits what it
+//! meets into in, on and out parts; [`Sketch::extrude_with`] (twist, taper to a point) and
+//! [`Sketch::revolve`] (about Y) turn it into a [`Solid`].
+//!
+//! ```
+//! use bspcsg::Sketch;
+//! use glam::DVec2;
+//! let washer = &Sketch::circle(1.0, 1e-3)? - &Sketch::circle(0.5, 1e-3)?;
+//! assert_eq!(washer.extrude(0.2)?.to_mesh().report().genus, Some(1));
+//! // Turned about the y axis, the washer is a torus with a torus-shaped cavity: two shells.
+//! let hollow = washer.translate(DVec2::new(2.0, 0.0))?.revolve(360.0, 64)?;
+//! assert_eq!(hollow.to_mesh().report().shells.len(), 2);
+//! # Ok::<(), bspcsg::Error>(())
+//! ```
 //!
 //! # Conventions
 //!
@@ -77,7 +103,8 @@ mod topology;
 pub use error::{Error, MeshDefect, Result};
 pub use geom::{Aabb, MAX_COORDINATE, Plane, Side, Tolerance};
 pub use io::{
-    Format, ParseFormatError, read_mesh, read_mesh_as, read_solid, write_mesh, write_mesh_as,
+    Format, ParseFormatError, read_mesh, read_mesh_as, read_mesh_from_bytes, read_solid,
+    write_mesh, write_mesh_as,
 };
 pub use mesh::{FromMeshOptions, Material, Mesh, MeshReport, ShellReport};
 pub use polygon::{Polygon, Split};

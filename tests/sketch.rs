@@ -441,3 +441,47 @@ fn many_circles() {
     let extruded = u.extrude(1.0).unwrap();
     assert!((extruded.volume() - u.area()).abs() < 1e-9 * u.area());
 }
+
+#[test]
+fn cone_of_a_sketch_with_a_hole() {
+    // Holes and separate regions all narrow to the same apex: the surface is pinched there, and
+    // the mesh must still come out closed, manifold and oriented.
+    let ring = &Sketch::rectangle(2.0, 2.0).unwrap() - &Sketch::circle(0.5, 1e-3).unwrap();
+    let two = &ring | &square_at(3.0, 0.0, 1.0);
+    for s in [ring, two] {
+        let cone = s
+            .extrude_with(
+                3.0,
+                &ExtrudeOptions {
+                    scale_top: DVec2::ZERO,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+        closed(&cone);
+        assert!(
+            (cone.volume() - s.area()).abs() < 1e-12,
+            "{} vs {}",
+            cone.volume(),
+            s.area()
+        );
+    }
+}
+
+#[test]
+fn plate_drilled_hole_by_hole() {
+    let plate = Sketch::rectangle(20.0, 20.0).unwrap();
+    let holes = cases::hole_grid(20);
+    let t = std::time::Instant::now();
+    let drilled = holes.iter().fold(plate, |p, h| &p - h);
+    eprintln!("400 holes one by one: {:?}", t.elapsed());
+    valid(&drilled);
+    assert_eq!(drilled.regions().len(), 1);
+    assert_eq!(drilled.regions()[0].holes().len(), 400);
+    let expected = 400.0 - holes.iter().map(Sketch::area).sum::<f64>();
+    assert!(
+        (drilled.area() - expected).abs() < 1e-9,
+        "{}",
+        drilled.area()
+    );
+}

@@ -76,6 +76,35 @@ proptest! {
         prop_assert!((&a - &a).is_empty());
     }
 
+    /// Operands with holes and several regions spread wide, so some rings lie far from the
+    /// other operand and pass through whole.
+    #[test]
+    fn inclusion_exclusion_of_compound_operands(
+        p in prop::collection::vec(placed(), 6),
+        shifts in prop::collection::vec(prop::array::uniform2(-3.0f64..3.0), 6),
+    ) {
+        let q: Vec<Sketch> = p
+            .iter()
+            .zip(&shifts)
+            .map(|(s, &d)| s.translate(DVec2::from(d)).unwrap())
+            .collect();
+        let a = &(&q[0] - &p[1].scale(0.5).unwrap().translate(DVec2::from(shifts[0])).unwrap()) | &q[2];
+        let b = &(&q[3] | &q[4]) - &p[5].scale(0.4).unwrap().translate(DVec2::from(shifts[4])).unwrap();
+        valid(&a)?;
+        valid(&b)?;
+        let (aa, ab) = (a.area(), b.area());
+        let u = &a | &b;
+        let i = &a & &b;
+        let d = &a - &b;
+        for s in [&u, &i, &d] {
+            valid(s)?;
+        }
+        let tol = 1e-9 * (aa + ab).max(1.0);
+        prop_assert!((u.area() + i.area() - aa - ab).abs() <= tol,
+            "∪ {} ∩ {} A {} B {}", u.area(), i.area(), aa, ab);
+        prop_assert!((d.area() - (aa - i.area())).abs() <= tol, "A−B {}", d.area());
+    }
+
     #[test]
     fn extrusions_close(a in placed(), b in placed(), h in 0.2f64..3.0, twist in -180.0f64..180.0,
                         top in 0.0f64..1.5) {

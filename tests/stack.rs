@@ -71,3 +71,34 @@ fn render_and_check_on_a_small_stack() {
     assert!(passed);
     assert!(lit > 500 && cast > 500, "{lit} {cast}");
 }
+
+#[test]
+fn star_polygon_union_on_a_small_stack() {
+    use bspcsg::{FillRule, Sketch};
+    use glam::DVec2;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .stack_size(STACK)
+        .build()
+        .unwrap();
+    let (area, valid, closed) = pool.install(|| {
+        let star = |n: usize, shift: f64| {
+            let pts: Vec<DVec2> = (0..n)
+                .map(|i| {
+                    let a = std::f64::consts::TAU * i as f64 / n as f64;
+                    DVec2::from_angle(a) * (0.75 + 0.25 * (i as f64 * 7.3).sin()) + shift
+                })
+                .collect();
+            Sketch::polygon(&pts, FillRule::NonZero).unwrap()
+        };
+        let u = &star(10_000, 0.0) | &star(9_999, 0.05);
+        let solid = u.extrude(1.0).unwrap();
+        (
+            u.area(),
+            u.report().is_valid(),
+            solid.to_mesh().report().is_closed_manifold(),
+        )
+    });
+    assert!(valid && closed);
+    assert!(area > 1.0 && area < 4.0, "area {area}");
+}

@@ -46,3 +46,18 @@ pub fn random_circles(n: usize, seed: u64) -> Vec<Sketch> {
         })
         .collect()
 }
+
+/// An `n × n` grid of circles of radius 0.3 (chordal tolerance 1e-3), one per unit cell of a
+/// square of side `n` centred at the origin.
+pub fn hole_grid(n: usize) -> Vec<Sketch> {
+    let circle = Sketch::circle(0.3, 1e-3).unwrap();
+    let half = n as f64 / 2.0;
+    (0..n * n)
+        .map(|k| {
+            let (i, j) = ((k / n) as f64, (k % n) as f64);
+            circle
+                .translate(DVec2::new(i + 0.5 - half, j + 0.5 - half))
+                .unwrap()
+        })
+        .collect()
+}

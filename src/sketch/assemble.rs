@@ -134,9 +134,12 @@ pub(super) fn next_around_faces(points: &[DVec2], half: &[(u32, u32)]) -> (Vec<u
 
 /// Rings from the welded graph, collinear runs merged, degenerate rings dropped, holes nested.
 pub(super) fn regions(segments: &[[DVec2; 2]], eps: f64) -> Vec<Region> {
-    let graph = weld(segments, eps);
-    let rings = chain(&graph, eps);
-    nest(rings)
+    nest(rings(segments, eps))
+}
+
+/// Rings from the welded graph, collinear runs merged, degenerate rings dropped.
+pub(super) fn rings(segments: &[[DVec2; 2]], eps: f64) -> Vec<Vec<DVec2>> {
+    chain(&weld(segments, eps), eps)
 }
 
 fn chain(graph: &Graph, eps: f64) -> Vec<Vec<DVec2>> {

@@ -17,10 +17,11 @@ use std::ops::{BitAnd, BitOr, Sub};
 use glam::DVec2;
 
 use super::classify::{Class, classify};
-use super::knife::KnifeTree;
+use super::knife::{Frag, KnifeTree, Label};
 use super::{Sketch, assemble};
-use crate::geom::Tolerance;
+use crate::geom::{Aabb, Tolerance};
 use crate::solid::BoolOp;
+use crate::solid::Containment;
 
 impl Sketch {
     /// Combines two sketches. Always succeeds; the result may be empty.
@@ -34,8 +35,20 @@ impl Sketch {
         if self.is_empty() || other.is_empty() || !box_a.overlaps(&box_b, eps) {
             return disjoint(self, other, op, eps);
         }
-        let (ea, eb) = (self.edges(), other.edges());
-        let (ta, tb) = rayon::join(|| KnifeTree::build(&ea, eps), || KnifeTree::build(&eb, eps));
+        // Only the rings whose boxes reach the other operand's box take part; the others lie
+        // wholly outside it and pass through (or drop out) whole, so drilling one more hole in
+        // a plate costs the hole, not the plate's other holes.
+        let margin = 0.01 * box_a.intersection(&box_b).diagonal() + 8.0 * eps;
+        let (focus_a, focus_b) = (box_b.expanded(margin), box_a.expanded(margin));
+        let (near_a, far_a) = split_rings(self, &focus_a);
+        let (near_b, far_b) = split_rings(other, &focus_b);
+        let (ea, eb) = (ring_edges(&near_a), ring_edges(&near_b));
+        // Each tree needs only the edges where the other operand's edges can reach: clipped to
+        // the other's box, it labels every point of that box right.
+        let (ta, tb) = rayon::join(
+            || focused_tree(self, &ea, &focus_a, eps),
+            || focused_tree(other, &eb, &focus_b, eps),
+        );
         let keep_a = |c: Class| match op {
             BoolOp::Union => matches!(c, Class::Outside | Class::OnSame),
             BoolOp::Intersection => matches!(c, Class::Inside | Class::OnSame),
@@ -67,7 +80,16 @@ impl Sketch {
             },
         );
         segs.extend(segs_b);
-        Sketch::from_regions(assemble::regions(&segs, eps), eps)
+        let mut rings = assemble::rings(&segs, eps);
+        // Far rings are outside the other operand: A's stay in a union or difference, B's in a
+        // union only.
+        if op != BoolOp::Intersection {
+            rings.extend(far_a.into_iter().map(<[DVec2]>::to_vec));
+        }
+        if op == BoolOp::Union {
+            rings.extend(far_b.into_iter().map(<[DVec2]>::to_vec));
+        }
+        Sketch::from_regions(assemble::nest(rings), eps)
     }
 
     /// The points in either sketch.
@@ -98,20 +120,46 @@ impl Sketch {
     pub fn intersection_all(sketches: impl IntoIterator<Item = Sketch>) -> Sketch {
         reduce(sketches.into_iter().collect(), BoolOp::Intersection)
     }
+}
 
-    /// The directed edges of every ring, zero-length ones left out.
-    pub(super) fn edges(&self) -> Vec<[DVec2; 2]> {
-        let mut out = Vec::with_capacity(self.vertex_count());
-        for ring in self.rings() {
-            for i in 0..ring.len() {
-                let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
-                if a != b {
-                    out.push([a, b]);
-                }
+/// The rings whose boxes reach `focus`, and the rest.
+fn split_rings<'a>(s: &'a Sketch, focus: &Aabb) -> (Vec<&'a [DVec2]>, Vec<&'a [DVec2]>) {
+    s.rings().partition(|r| {
+        let (lo, hi) = r
+            .iter()
+            .fold((r[0], r[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        Aabb::new(lo.extend(0.0), hi.extend(0.0)).overlaps(focus, 0.0)
+    })
+}
+
+/// The directed edges of `rings`, zero-length ones left out.
+fn ring_edges(rings: &[&[DVec2]]) -> Vec<[DVec2; 2]> {
+    let mut out = Vec::with_capacity(rings.iter().map(|r| r.len()).sum());
+    for ring in rings {
+        for i in 0..ring.len() {
+            let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
+            if a != b {
+                out.push([a, b]);
             }
         }
-        out
     }
+    out
+}
+
+/// The knife tree of `sketch`'s `edges` clipped to `focus`: right for every point of `focus`.
+fn focused_tree(sketch: &Sketch, edges: &[[DVec2; 2]], focus: &Aabb, eps: f64) -> KnifeTree {
+    let frags: Vec<Frag> = edges
+        .iter()
+        .enumerate()
+        .filter_map(|(i, &e)| Frag::clipped(i as u32, e, focus))
+        .filter(|f| f.a != f.b)
+        .collect();
+    // No edge reaches the box: it lies wholly inside or outside, as its centre does.
+    let empty = match sketch.contains(focus.center().truncate()) {
+        Containment::Inside => Label::Inside,
+        _ => Label::Outside,
+    };
+    KnifeTree::build_from(edges, frags, eps, empty)
 }
 
 /// The result where the operands cannot interact (one empty, or boxes apart).

@@ -91,6 +91,46 @@ pub(super) struct Frag {
 }
 
 impl Frag {
+    /// The part of edge `edge` (`a → b`) inside `bbox`, if any (Liang–Barsky clipping).
+    pub fn clipped(edge: u32, [a, b]: [DVec2; 2], bbox: &Aabb) -> Option<Frag> {
+        let d = b - a;
+        let (mut t0, mut t1) = (0.0f64, 1.0f64);
+        for k in 0..2 {
+            let (lo, hi) = (bbox.min[k], bbox.max[k]);
+            if d[k] == 0.0 {
+                if a[k] < lo || a[k] > hi {
+                    return None;
+                }
+                continue;
+            }
+            let (mut u, mut v) = ((lo - a[k]) / d[k], (hi - a[k]) / d[k]);
+            if u > v {
+                std::mem::swap(&mut u, &mut v);
+            }
+            t0 = t0.max(u);
+            t1 = t1.min(v);
+        }
+        if t0 > t1 {
+            return None;
+        }
+        let at = |t: f64| {
+            if t == 0.0 {
+                a
+            } else if t == 1.0 {
+                b
+            } else {
+                a + d * t
+            }
+        };
+        Some(Frag {
+            a: at(t0),
+            b: at(t1),
+            ta: t0,
+            tb: t1,
+            edge,
+        })
+    }
+
     pub fn whole(edge: u32, [a, b]: [DVec2; 2]) -> Frag {
         Frag {
             a,
@@ -191,16 +231,20 @@ enum Slot {
 
 impl KnifeTree {
     /// Builds the tree of a valid region's directed edges (region on their left).
-    pub fn build(edges: &[[DVec2; 2]], eps: f64) -> KnifeTree {
+    /// Builds the tree of the pieces `frags` of a valid region's directed `edges`. Where the
+    /// pieces are the edges clipped to a box, the tree labels every point of that box right:
+    /// a leaf cell's part inside the box holds no boundary and borders the knife piece that
+    /// made it. With no pieces at all the whole box has one label, `empty`.
+    pub fn build_from(
+        edges: &[[DVec2; 2]],
+        mut frags: Vec<Frag>,
+        eps: f64,
+        empty: Label,
+    ) -> KnifeTree {
         let mut tree = KnifeTree {
             nodes: Vec::new(),
-            root: Link::Leaf(Label::Outside),
+            root: Link::Leaf(empty),
         };
-        let mut frags: Vec<Frag> = edges
-            .iter()
-            .enumerate()
-            .map(|(i, &e)| Frag::whole(i as u32, e))
-            .collect();
         let mut own: Vec<Aabb> = Vec::new();
         let mut work: Vec<(Vec<u32>, Slot)> = vec![((0..frags.len() as u32).collect(), Slot::Root)];
         if frags.is_empty() {
@@ -304,9 +348,25 @@ fn cell_line(ids: &[u32], frags: &[Frag], eps: f64) -> Option<Line> {
             0.5 * (f.a[axis] + f.b[axis])
         })
         .collect();
-    values.sort_unstable_by(f64::total_cmp);
     let n = values.len();
     let mid = n / 2;
+    // Usually the median itself has a gap below it: a selection, not a sort, finds it.
+    values.select_nth_unstable_by(mid, f64::total_cmp);
+    let below = values[..mid]
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    if values[mid] - below > 4.0 * eps {
+        return Some(Line::axis_aligned(axis, 0.5 * (below + values[mid])));
+    }
+    let above = values[mid + 1..]
+        .iter()
+        .copied()
+        .fold(f64::INFINITY, f64::min);
+    if above - values[mid] > 4.0 * eps {
+        return Some(Line::axis_aligned(axis, 0.5 * (values[mid] + above)));
+    }
+    values.sort_unstable_by(f64::total_cmp);
     // Look outward from the median over the middle half.
     for step in 0..n / 2 {
         for k in [mid + step, mid.wrapping_sub(step + 1)] {
