@@ -66,8 +66,20 @@ impl Extrusion {
         let cap = p.z.abs() - h;
         let rho = xy.length();
         if rho > self.reach {
-            return (rho - self.reach).max(cap);
+            // Outside the cylinder: the distance to it, or the bound at the nearest point on it
+            // less the way there (distances are 1-Lipschitz), whichever is larger. The first
+            // alone falls to zero all around the cylinder, a phantom surface for sphere tracing.
+            let out = rho - self.reach;
+            let on = DVec3::new(p.x / rho * self.reach, p.y / rho * self.reach, p.z);
+            return out.max(self.sliced(on, cap) - out);
         }
+        self.sliced(p, cap)
+    }
+
+    /// The sliced bound inside the cylinder, capped by `cap`.
+    fn sliced(&self, p: DVec3, cap: f64) -> f64 {
+        let h = self.half_depth;
+        let xy = DVec2::new(p.x, p.y);
         let t = ((p.z + h) / (2.0 * h)).clamp(0.0, 1.0);
         let s = DVec2::ONE.lerp(self.scale_top, t).max(DVec2::splat(1e-12));
         let turn = DVec2::from_angle(-(self.twist * t).to_radians());
