@@ -5,7 +5,7 @@
 //!
 //! ```
 //! use bspcsg::Solid;
-//! use glam::DVec3;
+//! use bspcsg::glam::DVec3; // the glam version this crate uses, re-exported
 //!
 //! let block = Solid::cuboid(DVec3::new(2.0, 1.0, 1.0))?;
 //! let hole = Solid::cylinder(0.3, 2.0, 48)?;
@@ -15,6 +15,14 @@
 //! assert!(mesh.triangle_count() > 0);
 //! # Ok::<(), bspcsg::Error>(())
 //! ```
+//!
+//! # Features
+//!
+//! - `cli` (default): the `bspcsg` command line tool and the dependencies only it needs
+//!   (`clap`, `indicatif`). Libraries depending on this crate can turn it off with
+//!   `default-features = false`; the whole library API stays.
+//!
+//! The modules, bottom to top, and the import order CI enforces are in `ARCHITECTURE.md`.
 //!
 //! # Scenes
 //!
@@ -95,7 +103,8 @@ mod topology;
 pub use error::{Error, MeshDefect, Result};
 pub use geom::{Aabb, MAX_COORDINATE, Plane, Side, Tolerance};
 pub use io::{
-    Format, ParseFormatError, read_mesh, read_mesh_as, read_solid, write_mesh, write_mesh_as,
+    Format, ParseFormatError, read_mesh, read_mesh_as, read_mesh_from_bytes, read_solid,
+    write_mesh, write_mesh_as,
 };
 pub use mesh::{FromMeshOptions, Material, Mesh, MeshReport, ShellReport};
 pub use polygon::{Polygon, Split};

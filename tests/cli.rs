@@ -172,11 +172,13 @@ fn info_json_keys_and_values() {
         "boundary_edges",
         "nonmanifold_edges",
         "degenerate_triangles",
+        "needles",
         "components",
         "genus",
     ];
     expected.sort_unstable();
     assert_eq!(keys, expected);
+    assert_eq!(v["needles"], 0, "{v}");
     assert!((num(&v, "volume") - 1.5).abs() < 1e-9, "{v}");
     assert!((num(&v, "area") - 8.0).abs() < 1e-9, "{v}");
     assert_eq!(v["bbox_min"], serde_json::json!([-0.5, -0.5, -0.5]));
@@ -1011,4 +1013,20 @@ fn real_mesh_op_itself_is_exact() {
             }
         }
     }
+}
+
+#[test]
+fn info_counts_needles() {
+    // A tetrahedron whose fourth corner lies 1e-12 off the middle of a base edge: the face
+    // through that edge and that corner is a needle (area 5e-13, below 1e-12 × diagonal²).
+    let dir = Scratch::new("needles");
+    let mesh = Mesh::new(
+        vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::new(0.5, 0.0, 1e-12)],
+        vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],
+    );
+    let path = write(&dir.path("needles.obj"), &mesh);
+    let v = info(&path);
+    assert_eq!(v["needles"], 1, "{v}");
+    let run = bspcsg([OsStr::new("info"), path.as_os_str()]).ok();
+    assert!(run.stdout.contains("needles"), "{}", run.stdout);
 }

@@ -136,3 +136,64 @@ fn menger_depth_3_from_f32_obj_boxes() {
     assert_volume(mesh.volume(), 8000.0 / 19683.0, 1e-6, "menger 3 (f32)");
     assert_eq!(report.genus, Some(1409), "{report}");
 }
+
+/// An OBJ box at `min`, `size` (in eighths), turned by `degrees` about `axis` around its centre.
+fn turned_box(min: [i32; 3], size: [i32; 3], axis: [f64; 3], degrees: f64) -> Solid {
+    let min = DVec3::from(min.map(|v| v as f64 / 8.0));
+    let max = min + DVec3::from(size.map(|v| v as f64 / 8.0));
+    let mut mesh = common::obj_box_mesh(min, max);
+    let q =
+        bspcsg::glam::DQuat::from_axis_angle(DVec3::from(axis).normalize(), degrees.to_radians());
+    let centre = (min + max) / 2.0;
+    for p in &mut mesh.positions {
+        *p = centre + q * (*p - centre);
+    }
+    Solid::from_mesh(&mesh).unwrap()
+}
+
+/// Found by the property test over triangulated boxes: a box on top of another, turned by
+/// 1.3e-8°, so its bottom crosses the other's top at an angle of 2.3e-10 rad. Each operand's
+/// face is cut where the other's plane crosses it, and the two cut lines land 1.25e-7 apart
+/// (a rounding error over the angle), leaving a flat slit far wider than any weld. The slit is
+/// filled flat (mesh/repair/cracks.rs).
+#[test]
+fn union_with_a_box_turned_1e_8_degrees_closes_the_slit() {
+    let a = turned_box([1, 0, 0], [2, 2, 2], [0.0, 0.0, 1.0], 0.0);
+    let b = turned_box(
+        [-1, 0, 2],
+        [7, 7, 2],
+        [0.0, -0.44781671067121853, -0.8077929949849475],
+        1.3129451674889725e-8,
+    );
+    let u = &a | &b;
+    let mesh = u.to_mesh();
+    assert_clean(&mesh, "slit");
+    assert!(
+        (mesh.volume() - u.volume()).abs() < 1e-15,
+        "{}",
+        mesh.volume()
+    );
+}
+
+/// Found by the same property test: the same kind of crossing, 6.6e-10 rad, where the
+/// intersection is a wedge at most 1e-10 thick. Welds wide enough to close the cut lines'
+/// offset flatten the wedge; filled flat, the slit leaves edges of three triangles. Open.
+#[test]
+#[ignore = "open: a wedge thinner than the widest weld (see the closing note of issue 11)"]
+fn intersection_wedge_1e_10_thick() {
+    let a = turned_box([1, 1, -2], [6, 3, 4], [0.0, 0.0, 1.0], 0.0);
+    let b = turned_box(
+        [1, 1, 2],
+        [4, 3, 2],
+        [0.0, -0.5461877091016215, -0.7662132363812816],
+        3.768585967900714e-8,
+    );
+    let i = &a & &b;
+    let mesh = i.to_mesh();
+    assert_clean(&mesh, "wedge");
+    assert!(
+        (mesh.volume() - i.volume()).abs() < 1e-18,
+        "{}",
+        mesh.volume()
+    );
+}

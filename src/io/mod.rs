@@ -145,10 +145,29 @@ pub fn read_mesh_as(path: impl AsRef<Path>, format: Format) -> Result<Mesh> {
         path: path.to_path_buf(),
         source,
     })?;
+    read_mesh_from_bytes(path, &bytes, format)
+}
+
+/// Reads a mesh from the bytes of a file already in memory. `path` names it in error messages
+/// and, for a `.gltf`, is where external buffers are looked up relative to. See [`read_mesh`].
+///
+/// ```
+/// use bspcsg::{Format, read_mesh_from_bytes};
+/// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+/// let mesh = read_mesh_from_bytes("mem.obj".as_ref(), obj, Format::Obj)?;
+/// assert_eq!(mesh.triangle_count(), 1);
+/// assert!(read_mesh_from_bytes("bad.obj".as_ref(), b"f 1 2 3", Format::Obj).is_err());
+/// # Ok::<(), bspcsg::Error>(())
+/// ```
+///
+/// # Errors
+///
+/// As [`read_mesh`].
+pub fn read_mesh_from_bytes(path: &Path, bytes: &[u8], format: Format) -> Result<Mesh> {
     let mesh = match format {
-        Format::Obj => obj::read(path, &bytes)?,
-        Format::Stl => stl::read(path, &bytes)?,
-        Format::Gltf | Format::Glb => gltf::read(path, &bytes)?,
+        Format::Obj => obj::read(path, bytes)?,
+        Format::Stl => stl::read(path, bytes)?,
+        Format::Gltf | Format::Glb => gltf::read(path, bytes)?,
     };
     if mesh.is_empty() {
         return Err(parse_error(path, None, "the file holds no triangles"));

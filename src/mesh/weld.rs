@@ -35,7 +35,7 @@ impl Welder {
 /// Where a wider weld is allowed: around the vertices of cracks an earlier pass left. A point
 /// within `2 · delta` of one of them may weld and join edges `delta` away; the partner of a
 /// crack vertex need not lie on a crack itself.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub(crate) struct Wide {
     points: Vec<DVec3>,
     grid: FxHashMap<[i64; 3], SmallVec<[u32; 2]>>,

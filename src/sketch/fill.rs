@@ -17,7 +17,7 @@ impl Sketch {
     ///
     /// ```
     /// use bspcsg::{FillRule, Sketch};
-    /// use glam::DVec2;
+    /// use bspcsg::glam::DVec2;
     /// // A pentagram: its centre winds twice.
     /// let star: Vec<DVec2> = (0..5)
     ///     .map(|k| {

@@ -61,7 +61,7 @@ impl Sketch {
     ///
     /// ```
     /// use bspcsg::{ExtrudeOptions, Sketch};
-    /// use glam::DVec2;
+    /// use bspcsg::glam::DVec2;
     /// let square = Sketch::rectangle(1.0, 1.0)?;
     /// let pyramid = square.extrude_with(
     ///     3.0,
@@ -182,7 +182,7 @@ impl Sketch {
     ///
     /// ```
     /// use bspcsg::Sketch;
-    /// use glam::DVec2;
+    /// use bspcsg::glam::DVec2;
     /// // A 1 × 2 rectangle from x = 1 to 2: a tube of volume 2π·1.5·2 = 6π.
     /// let ring = Sketch::rectangle(1.0, 2.0)?.translate(DVec2::new(1.5, 0.0))?;
     /// let tube = ring.revolve(360.0, 256)?;

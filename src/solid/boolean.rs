@@ -99,7 +99,7 @@ pub fn boolean(a: &Solid, b: &Solid, op: BoolOp) -> Solid {
 ///
 /// ```
 /// use bspcsg::{BoolOp, Solid, Tolerance, boolean, boolean_with};
-/// use glam::DVec3;
+/// use bspcsg::glam::DVec3;
 ///
 /// // Two boxes 10⁻⁹ apart: two shells by default, one flush box at a tolerance of 10⁻⁶.
 /// let a = Solid::cube(1.0)?;

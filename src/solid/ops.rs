@@ -51,7 +51,7 @@ impl Solid {
 ///
 /// ```
 /// use bspcsg::{BoolOp, Solid, boolean_all};
-/// use glam::DVec3;
+/// use bspcsg::glam::DVec3;
 ///
 /// let cube = |x: f64| Solid::cube(1.0)?.translate(DVec3::new(x, 0.0, 0.0));
 /// let row = boolean_all([cube(0.0)?, cube(0.5)?, cube(1.0)?], BoolOp::Union);

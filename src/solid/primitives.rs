@@ -11,7 +11,7 @@ impl Solid {
     /// An axis-aligned box of the given edge lengths, centred at the origin.
     ///
     /// ```
-    /// let b = bspcsg::Solid::cuboid(glam::DVec3::new(1.0, 2.0, 3.0)).unwrap();
+    /// let b = bspcsg::Solid::cuboid(bspcsg::glam::DVec3::new(1.0, 2.0, 3.0)).unwrap();
     /// assert!((b.volume() - 6.0).abs() < 1e-12);
     /// ```
     ///
@@ -98,7 +98,7 @@ impl Solid {
     /// an area, and the faces close up: every edge is used once in each direction.
     ///
     /// ```
-    /// use glam::DVec3;
+    /// use bspcsg::glam::DVec3;
     /// let v = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
     /// let tetra = bspcsg::Solid::polyhedron(&v, &[[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]]).unwrap();
     /// assert!((tetra.volume() - 1.0 / 6.0).abs() < 1e-12);

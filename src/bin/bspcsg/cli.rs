@@ -86,8 +86,9 @@ Example:
     /// exits 0 with its defects listed.
     #[command(after_help = concat!(
         "JSON keys (--json): triangles, vertices, volume, area, bbox_min, bbox_max, watertight,
-boundary_edges, nonmanifold_edges, degenerate_triangles, components, genus.
-watertight: every edge used by exactly two triangles in opposite directions. components: the
+boundary_edges, nonmanifold_edges, degenerate_triangles, needles, components, genus.
+needles: triangles of area below 1e-12 x (their shell's box diagonal)^2, valid but useless
+geometry that booleans and bakes remove. watertight: every edge used by exactly two triangles in opposite directions. components: the
 shells (triangles joined across edges used by exactly two triangles). genus: null when
 undefined (an open or inconsistently oriented shell). volume: by the divergence theorem,
 meaningful only for a watertight mesh.

@@ -31,6 +31,7 @@ pub(crate) fn info(args: &InfoArgs, progress: &Progress) -> Result<(), Failure> 
             "boundary_edges": report.boundary_edges,
             "nonmanifold_edges": report.non_manifold_edges,
             "degenerate_triangles": report.degenerate_triangles,
+            "needles": report.needles,
             "components": report.shells.len(),
             "genus": report.genus,
         });
@@ -67,6 +68,7 @@ pub(crate) fn info(args: &InfoArgs, progress: &Progress) -> Result<(), Failure> 
             "degenerate triangles",
             report.degenerate_triangles.to_string(),
         );
+        line("needles", report.needles.to_string());
         line("components", report.shells.len().to_string());
         line("inside-out shells", report.inverted_shells.to_string());
         line(

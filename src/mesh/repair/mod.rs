@@ -19,6 +19,7 @@
 //!    triangles around it. Solids touching along an edge or at a vertex come out as separate
 //!    manifold shells ([`shells`]).
 
+mod cracks;
 mod regions;
 mod shells;
 mod tjunction;
@@ -61,33 +62,84 @@ pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64) -> Mesh {
     }
     let delta = WELD_TOLERANCES * eps;
     let mut wide = Wide::default();
-    // First the quick pass, then the full T-junction search at the same weld, then wider welds.
-    let (mut best, mut cracks) = repair(polygons, delta, &wide, true);
+    // First the quick pass, then the full T-junction search at the same weld.
+    let (mut mesh, mut cracks) = repair(polygons, delta, &wide, true, None);
     if !cracks.is_empty() {
-        (best, cracks) = repair(polygons, delta, &wide, false);
+        (mesh, cracks) = repair(polygons, delta, &wide, false, None);
     }
-    let mut fewest = cracks.len();
+    if cracks.is_empty() {
+        super::needles::remove_needles(&mut mesh);
+        return mesh;
+    }
+    let mut best = Attempt::new(mesh, cracks.len());
+    // Wider welds around the cracks. A wide weld can also flatten a feature thinner than its
+    // reach (a wedge 10⁻¹⁰ thick between faces crossing at a tiny angle), so a pass without
+    // cracks still has to be a closed 2-manifold to be taken.
     let mut reach = delta;
     for _ in 0..WELD_RETRIES {
-        if cracks.is_empty() {
-            break;
-        }
         reach *= 10.0;
         wide.widen(&cracks, reach);
         let mesh;
-        (mesh, cracks) = repair(polygons, delta, &wide, false);
-        if cracks.len() < fewest {
-            (best, fewest) = (mesh, cracks.len());
+        (mesh, cracks) = repair(polygons, delta, &wide, false, None);
+        best.consider(mesh, cracks.len());
+        if best.clean || cracks.is_empty() {
+            break;
         }
     }
-    super::needles::remove_needles(&mut best);
-    best
+    if !best.clean {
+        // What no weld closes: slits between two cut lines of faces crossing at a tiny angle,
+        // filled flat on the pass before any widening (see [`cracks`]).
+        let (mesh, left) = repair(polygons, delta, &Wide::default(), false, Some(reach));
+        best.consider(mesh, left.len());
+    }
+    let mut mesh = best.mesh;
+    super::needles::remove_needles(&mut mesh);
+    mesh
+}
+
+/// The best repair pass so far: a closed 2-manifold if any, else the one with fewest cracks.
+struct Attempt {
+    mesh: Mesh,
+    cracks: usize,
+    clean: bool,
+}
+
+impl Attempt {
+    fn new(mesh: Mesh, cracks: usize) -> Self {
+        Attempt {
+            mesh,
+            cracks,
+            clean: false,
+        }
+    }
+
+    fn consider(&mut self, mesh: Mesh, cracks: usize) {
+        if self.clean {
+            return;
+        }
+        if cracks == 0 && mesh.report().is_closed_manifold() {
+            *self = Attempt {
+                mesh,
+                cracks,
+                clean: true,
+            };
+        } else if cracks < self.cracks {
+            (self.mesh, self.cracks) = (mesh, cracks);
+        }
+    }
 }
 
 /// One repair pass with weld tolerance `delta` (wider near the `wide` points); `quick` skips the
-/// T-junction search on edges already matched (see [`tjunction::insert_on_edges`]). Returns the
-/// mesh and the end points of its cracks.
-fn repair(polygons: &[Polygon], delta: f64, wide: &Wide, quick: bool) -> (Mesh, Vec<DVec3>) {
+/// T-junction search on edges already matched (see [`tjunction::insert_on_edges`]); with
+/// `fill_flat`, crack loops within that distance of one plane are filled before the shells are
+/// split. Returns the mesh and the end points of its cracks.
+fn repair(
+    polygons: &[Polygon],
+    delta: f64,
+    wide: &Wide,
+    quick: bool,
+    fill_flat: Option<f64>,
+) -> (Mesh, Vec<DVec3>) {
     let corners: Vec<DVec3> = polygons
         .iter()
         .flat_map(|p| p.vertices().iter().copied())
@@ -108,7 +160,10 @@ fn repair(polygons: &[Polygon], delta: f64, wide: &Wide, quick: bool) -> (Mesh, 
         }
     }
     tjunction::insert_on_edges(&positions, &mut rings, delta, wide, quick);
-    let triangles = regions::triangulate_regions(&positions, &rings, polygons, delta);
+    let mut triangles = regions::triangulate_regions(&positions, &rings, polygons, delta);
+    if let Some(flat) = fill_flat {
+        cracks::close_flat_cracks(&positions, &mut triangles, flat);
+    }
     shells::split_into_shells(positions, triangles)
 }
 

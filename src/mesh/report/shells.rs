@@ -61,8 +61,23 @@ pub(super) fn shells(
         }
     }
 
-    // Edges per shell. An edge of several shells counts in each; each shell must use it
-    // exactly twice, in opposite directions, to be closed and oriented.
+    count_edges(table, &shell_of, &mut out);
+    count_vertices(tris, usable, &shell_of, &mut out);
+
+    for s in &mut out {
+        s.volume /= 6.0;
+        s.euler_characteristic = s.vertices as i64 - s.edges as i64 + s.triangles as i64;
+        let twice_genus = 2 - s.euler_characteristic;
+        s.genus = (s.closed && s.oriented && twice_genus >= 0 && twice_genus % 2 == 0)
+            .then_some(twice_genus as u64 / 2);
+    }
+    find_cavities(mesh, usable, &shell_of, &boxes, &mut out, centre);
+    out
+}
+
+/// Edges per shell. An edge of several shells counts in each; each shell must use it exactly
+/// twice, in opposite directions, to be closed and oriented.
+fn count_edges(table: &EdgeTable, shell_of: &[usize], out: &mut [ShellReport]) {
     let mut uses: Vec<(usize, usize)> = Vec::new();
     for run in table.runs() {
         uses.clear();
@@ -77,8 +92,10 @@ pub(super) fn shells(
             }
         }
     }
+}
 
-    // Distinct vertices per shell.
+/// Distinct vertices per shell.
+fn count_vertices(tris: &[[u32; 3]], usable: &[bool], shell_of: &[usize], out: &mut [ShellReport]) {
     let mut pairs: Vec<(usize, u32)> = (0..tris.len())
         .filter(|&t| usable[t])
         .flat_map(|t| tris[t].map(|v| (shell_of[t], v)))
@@ -88,16 +105,6 @@ pub(super) fn shells(
     for &(s, _) in &pairs {
         out[s].vertices += 1;
     }
-
-    for s in &mut out {
-        s.volume /= 6.0;
-        s.euler_characteristic = s.vertices as i64 - s.edges as i64 + s.triangles as i64;
-        let twice_genus = 2 - s.euler_characteristic;
-        s.genus = (s.closed && s.oriented && twice_genus >= 0 && twice_genus % 2 == 0)
-            .then_some(twice_genus as u64 / 2);
-    }
-    find_cavities(mesh, usable, &shell_of, &boxes, &mut out, centre);
-    out
 }
 
 /// Marks the closed, oriented shells of negative volume around which the other closed,

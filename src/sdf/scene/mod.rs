@@ -42,7 +42,7 @@ pub const MAX_SCENE_MAGNITUDE: f64 = 1e12;
 ///
 /// ```
 /// use bspcsg::Scene;
-/// use glam::DVec3;
+/// use bspcsg::glam::DVec3;
 ///
 /// let scene = Scene::from_json_str(r#"{
 ///     "op": "subtract",

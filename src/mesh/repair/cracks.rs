@@ -1,0 +1,103 @@
+//! Closing the cracks no weld could close: thin slits that lie in one plane.
+//!
+//! Where two faces meet at a tiny angle α, the line where they cross is only known to within
+//! a rounding error over α: 10⁻¹⁷ / 10⁻¹⁰ puts it 10⁻⁷ off. Each operand's face is cut where
+//! the other's plane crosses it, computed along different edges, so the two cut lines can lie
+//! that far apart, in the same plane, and the surface between them belongs to neither: a slit
+//! far wider than any weld. The slit bounds a piece of surface that lies flat in the plane of
+//! the faces on both sides, so filling it with triangles in that plane closes the mesh and
+//! moves nothing (the piece has no thickness; the volume is unchanged).
+
+use glam::DVec3;
+
+use crate::geom::Plane;
+use crate::geom::triangulate::{ear_clip_boundary, triangulate_boundary};
+use crate::hash::FxHashMap;
+
+/// Fills every loop of unpaired half-edges that lies within `flat` of one plane with triangles
+/// running the other way, each taking the source of the triangle beside the loop's first edge.
+/// Loops that are not flat, or do not close, are left alone.
+pub(super) fn close_flat_cracks(
+    positions: &[DVec3],
+    (triangles, sources): &mut (Vec<[u32; 3]>, Vec<u32>),
+    flat: f64,
+) {
+    let mut uses: FxHashMap<(u32, u32), i32> = FxHashMap::default();
+    let mut owner: FxHashMap<(u32, u32), u32> = FxHashMap::default();
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            *uses.entry((a, b)).or_default() += 1;
+            owner.insert((a, b), t as u32);
+        }
+    }
+    // Unpaired half-edges by their start vertex.
+    let mut open: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
+    let mut ends: Vec<(u32, u32)> = Vec::new();
+    let mut keys: Vec<(u32, u32)> = uses.keys().copied().collect();
+    keys.sort_unstable();
+    for (a, b) in keys {
+        let surplus = uses[&(a, b)] - uses.get(&(b, a)).copied().unwrap_or(0);
+        for _ in 0..surplus.max(0) {
+            open.entry(a).or_default().push(ends.len() as u32);
+            ends.push((a, b));
+        }
+    }
+    let mut used = vec![false; ends.len()];
+    for start in 0..ends.len() {
+        if used[start] {
+            continue;
+        }
+        let Some(edges) = trace(&ends, &open, &mut used, start) else {
+            continue;
+        };
+        let ring: Vec<DVec3> = edges.iter().map(|&(a, _)| positions[a as usize]).collect();
+        let Some(plane) = Plane::from_points(&ring) else {
+            continue;
+        };
+        if ring.iter().any(|&p| plane.distance(p).abs() > flat) {
+            continue;
+        }
+        // The fill runs against the loop, so each of its edges pairs with an open one.
+        let fill: Vec<(u32, u32)> = edges.iter().rev().map(|&(a, b)| (b, a)).collect();
+        let normal = -plane.normal;
+        let tris = triangulate_boundary(positions, normal, &fill)
+            .unwrap_or_else(|| ear_clip_boundary(positions, normal, &fill));
+        if tris.len() + 2 != fill.len() {
+            continue;
+        }
+        let source = sources[owner[&edges[0]] as usize];
+        sources.extend(std::iter::repeat_n(source, tris.len()));
+        triangles.extend(tris);
+    }
+}
+
+/// Follows unpaired half-edges from `start` until they come back to its first vertex; `None`
+/// (and the edges left free) when the walk ends elsewhere.
+fn trace(
+    ends: &[(u32, u32)],
+    open: &FxHashMap<u32, Vec<u32>>,
+    used: &mut [bool],
+    start: usize,
+) -> Option<Vec<(u32, u32)>> {
+    let first = ends[start].0;
+    let mut path = vec![start as u32];
+    used[start] = true;
+    let mut at = ends[start].1;
+    while at != first {
+        let next = open
+            .get(&at)
+            .and_then(|list| list.iter().copied().find(|&e| !used[e as usize]));
+        let Some(e) = next.filter(|_| path.len() < ends.len()) else {
+            for &e in &path {
+                used[e as usize] = false;
+            }
+            used[start] = true;
+            return None;
+        };
+        used[e as usize] = true;
+        path.push(e);
+        at = ends[e as usize].1;
+    }
+    Some(path.iter().map(|&e| ends[e as usize]).collect())
+}
