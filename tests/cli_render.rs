@@ -16,14 +16,27 @@ fn scene(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("examples/scenes/{name}.json"))
 }
 
-const SCENES: [&str; 3] = ["mechanical_part", "organic_blend", "extruded_profile"];
+/// Every example scene's name.
+fn scenes() -> Vec<String> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes");
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert!(names.len() >= 4, "{names:?}");
+    names
+}
 
 #[test]
 fn render_writes_images_of_every_route() {
     let dir = Scratch::new("render-routes");
-    for name in SCENES {
+    for name in scenes() {
         for via in ["sdf", "bsp", "mc"] {
             let out = dir.path(&format!("{name}-{via}.png"));
+            let name = name.as_str();
             let run = bspcsg(args(&[
                 &"render",
                 &scene(name),
@@ -183,9 +196,9 @@ fn bad_render_input_is_refused_and_nothing_written() {
 
 #[test]
 fn check_passes_for_every_example_scene_by_both_routes() {
-    for name in SCENES {
+    for name in scenes() {
         for via in ["bsp", "sdf"] {
-            let run = bspcsg(args(&[&"check", &scene(name), &"--via", &via, &"--json"])).ok();
+            let run = bspcsg(args(&[&"check", &scene(&name), &"--via", &via, &"--json"])).ok();
             let v: Value = serde_json::from_str(&run.stdout).unwrap();
             assert_eq!(v["passed"], true, "{name} {via}: {}", run.stdout);
             let pct = v["rays"]["agreement_pct"].as_f64().unwrap();

@@ -224,7 +224,12 @@ fn golden(name: &str, img: &Image) {
 
 #[test]
 fn example_scenes_match_their_golden_images() {
-    for name in ["mechanical_part", "organic_blend", "extruded_profile"] {
+    for name in [
+        "mechanical_part",
+        "organic_blend",
+        "extruded_profile",
+        "turned_and_twisted",
+    ] {
         let scene = example(name);
         let cam = Camera::for_scene(&scene, View::Iso, (128, 96)).unwrap();
         let opts = RenderOptions::with_profile(scene.render_profile().clone());

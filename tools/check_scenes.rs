@@ -13,9 +13,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect::<Result<_, _>>()?;
     paths.sort();
     println!(
-        "| scene | route | tol | rays agree % | depth p99 | surface max | surface p99 | coverage max | coverage p99 | sign % | time |"
+        "| scene | route | triangles | T | rays agree % | depth p99 | depth max | surface max | surface p99 | coverage max | coverage p99 | sign % | check time |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for path in paths {
         let scene = Scene::from_path(&path)?;
         let name = path.file_stem().unwrap().to_string_lossy().into_owned();
@@ -25,12 +25,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let cell = scene.bbox().size().max_element() / 128.0;
                 (scene.bake(&BakeOptions::with_cell(cell))?, cell)
             } else {
+                // As `bspcsg check --via bsp`: twice the default chordal tolerance (smooth
+                // blends are baked at four times it).
                 let tol = diag / 500.0;
                 (
                     scene
                         .to_solid(&TessellationOptions::with_tolerance(tol))?
                         .to_mesh(),
-                    tol,
+                    2.0 * tol,
                 )
             };
             let start = Instant::now();
@@ -43,9 +45,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 },
             )?;
             println!(
-                "| {name} | {route} | {tol:.4} | {:.3} | {:.4} | {:.4} | {:.4} | {:.4} | {:.4} | {:.2} | {:.2} s |",
+                "| {name} | {route} | {} | {tol:.4} | {:.3} | {:.4} | {:.3} | {:.4} | {:.4} | {:.4} | {:.4} | {:.2} | {:.2} s |",
+                mesh.triangle_count(),
                 r.rays.agreement_pct,
                 r.rays.depth_p99,
+                r.rays.depth_max,
                 r.surface.max,
                 r.surface.p99,
                 r.coverage.max,

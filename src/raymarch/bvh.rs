@@ -217,8 +217,9 @@ impl MeshBvh {
     #[must_use]
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<MeshHit> {
         let mut best: Option<MeshHit> = None;
+        let shear = Shear::new(ray);
         self.traverse(ray, t_min, t_max, |bvh, k, tf| {
-            if let Some((t, u, v)) = watertight(ray, &bvh.corners[k], t_min, *tf) {
+            if let Some((t, u, v)) = shear.hit(&bvh.corners[k], t_min, *tf) {
                 *tf = t;
                 best = Some(MeshHit {
                     t,
@@ -235,8 +236,9 @@ impl MeshBvh {
     #[must_use]
     pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let mut hit = false;
+        let shear = Shear::new(ray);
         self.traverse(ray, t_min, t_max, |bvh, k, tf| {
-            hit = watertight(ray, &bvh.corners[k], t_min, *tf).is_some();
+            hit = shear.hit(&bvh.corners[k], t_min, *tf).is_some();
             hit
         });
         hit
@@ -246,8 +248,9 @@ impl MeshBvh {
     #[must_use]
     pub fn crossings(&self, ray: &Ray) -> usize {
         let mut n = 0;
+        let shear = Shear::new(ray);
         self.traverse(ray, 0.0, f64::INFINITY, |bvh, k, tf| {
-            if watertight(ray, &bvh.corners[k], 0.0, *tf).is_some() {
+            if shear.hit(&bvh.corners[k], 0.0, *tf).is_some() {
                 n += 1;
             }
             false
@@ -272,9 +275,10 @@ impl MeshBvh {
         let inv = Vec3A::from(ray.dir.recip().as_vec3());
         let t_lo = t_min as f32;
         let mut t_far = t_max;
-        let mut stack = [0u32; STACK];
-        let mut top = 1usize;
-        // Entry distance of the root is not needed: test it like any node.
+        // Each node's box is tested once, when its parent is opened; the stack keeps the entry
+        // distance so that nodes beyond a hit found meanwhile are dropped unopened.
+        let mut stack = [(0u32, 0.0f32); STACK];
+        let mut top = 0usize;
         let slab = |n: &Node, far: f32| -> Option<f32> {
             let t0 = (Vec3A::from(n.min) - o) * inv;
             let t1 = (Vec3A::from(n.max) - o) * inv;
@@ -283,14 +287,20 @@ impl MeshBvh {
             let fa = t0.max(t1).min_element() * 1.000_000_5;
             (near <= fa.min(far)).then_some(near)
         };
+        let slack = |t: f64| (t as f32) * 1.000_000_5;
+        if let Some(near) = slab(&self.nodes[0], slack(t_far)) {
+            stack[0] = (0, near);
+            top = 1;
+        }
         while top > 0 {
             top -= 1;
-            let n = stack[top] as usize;
-            let node = &self.nodes[n];
-            let far = (t_far as f32) * 1.000_000_5;
-            if slab(node, far).is_none() {
+            let (n, near) = stack[top];
+            let far = slack(t_far);
+            if near > far {
                 continue;
             }
+            let n = n as usize;
+            let node = &self.nodes[n];
             if node.count > 0 {
                 let s = node.start_or_right as usize;
                 for k in s..s + node.count as usize {
@@ -305,17 +315,21 @@ impl MeshBvh {
                 // Push the farther first so the nearer pops next.
                 match (ta, tb) {
                     (Some(x), Some(y)) => {
-                        let (first, second) = if x <= y { (a, b) } else { (b, a) };
-                        stack[top] = second as u32;
-                        stack[top + 1] = first as u32;
+                        let (first, second) = if x <= y {
+                            ((a, x), (b, y))
+                        } else {
+                            ((b, y), (a, x))
+                        };
+                        stack[top] = (second.0 as u32, second.1);
+                        stack[top + 1] = (first.0 as u32, first.1);
                         top += 2;
                     }
-                    (Some(_), None) => {
-                        stack[top] = a as u32;
+                    (Some(x), None) => {
+                        stack[top] = (a as u32, x);
                         top += 1;
                     }
-                    (None, Some(_)) => {
-                        stack[top] = b as u32;
+                    (None, Some(y)) => {
+                        stack[top] = (b as u32, y);
                         top += 1;
                     }
                     (None, None) => {}
@@ -482,53 +496,72 @@ fn partition(v: &mut [u32], pred: impl Fn(u32) -> bool) -> usize {
     i
 }
 
-/// The watertight ray–triangle test of Woop, Benthin and Wald (JCGT 2013): edge functions in a
-/// ray-aligned shear frame, so a ray through a shared edge or vertex hits at least one of the
-/// triangles there (never slips between them). Both sides count. Returns `(t, u, v)`.
-#[inline]
-pub(crate) fn watertight(
-    ray: &Ray,
-    tri: &[DVec3; 3],
-    t_min: f64,
-    t_max: f64,
-) -> Option<(f64, f64, f64)> {
-    let d = ray.dir;
-    let kz = d.abs().max_position();
-    let mut kx = (kz + 1) % 3;
-    let mut ky = (kx + 1) % 3;
-    if d[kz] < 0.0 {
-        std::mem::swap(&mut kx, &mut ky);
+/// The per-ray part of the watertight test: the axis permutation and shear that map the ray
+/// to +z, computed once per ray rather than per triangle.
+#[derive(Clone, Copy)]
+pub(crate) struct Shear {
+    origin: DVec3,
+    k: [usize; 3],
+    s: [f64; 3],
+}
+
+impl Shear {
+    #[inline]
+    pub(crate) fn new(ray: &Ray) -> Shear {
+        let d = ray.dir;
+        let kz = d.abs().max_position();
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        if d[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        let sz = 1.0 / d[kz];
+        Shear {
+            origin: ray.origin,
+            k: [kx, ky, kz],
+            s: [d[kx] * sz, d[ky] * sz, sz],
+        }
     }
-    let sz = 1.0 / d[kz];
-    let sx = d[kx] * sz;
-    let sy = d[ky] * sz;
-    let a = tri[0] - ray.origin;
-    let b = tri[1] - ray.origin;
-    let c = tri[2] - ray.origin;
-    let ax = a[kx] - sx * a[kz];
-    let ay = a[ky] - sy * a[kz];
-    let bx = b[kx] - sx * b[kz];
-    let by = b[ky] - sy * b[kz];
-    let cx = c[kx] - sx * c[kz];
-    let cy = c[ky] - sy * c[kz];
-    let u = cx * by - cy * bx;
-    let v = ax * cy - ay * cx;
-    let w = bx * ay - by * ax;
-    if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
-        return None;
+
+    /// The watertight ray–triangle test of Woop, Benthin and Wald (JCGT 2013): edge functions
+    /// in a ray-aligned shear frame, so a ray through a shared edge or vertex hits at least one
+    /// of the triangles there (never slips between them). Both sides count. Returns
+    /// `(t, u, v)`.
+    #[inline]
+    pub(crate) fn hit(&self, tri: &[DVec3; 3], t_min: f64, t_max: f64) -> Option<(f64, f64, f64)> {
+        let [kx, ky, kz] = self.k;
+        let [sx, sy, sz] = self.s;
+        let a = tri[0] - self.origin;
+        let b = tri[1] - self.origin;
+        let c = tri[2] - self.origin;
+        let ax = a[kx] - sx * a[kz];
+        let ay = a[ky] - sy * a[kz];
+        let bx = b[kx] - sx * b[kz];
+        let by = b[ky] - sy * b[kz];
+        let cx = c[kx] - sx * c[kz];
+        let cy = c[ky] - sy * c[kz];
+        let u = cx * by - cy * bx;
+        let v = ax * cy - ay * cx;
+        let w = bx * ay - by * ax;
+        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+            return None;
+        }
+        let det = u + v + w;
+        if det == 0.0 {
+            return None;
+        }
+        let t = (u * a[kz] + v * b[kz] + w * c[kz]) * sz / det;
+        if !(t > t_min && t < t_max) {
+            return None;
+        }
+        Some((t, v / det, w / det))
     }
-    let det = u + v + w;
-    if det == 0.0 {
-        return None;
-    }
-    let az = sz * a[kz];
-    let bz = sz * b[kz];
-    let cz = sz * c[kz];
-    let t = (u * az + v * bz + w * cz) / det;
-    if !(t > t_min && t < t_max) {
-        return None;
-    }
-    Some((t, v / det, w / det))
+}
+
+/// [`Shear::hit`] for one ray and one triangle.
+#[cfg(test)]
+fn watertight(ray: &Ray, tri: &[DVec3; 3], t_min: f64, t_max: f64) -> Option<(f64, f64, f64)> {
+    Shear::new(ray).hit(tri, t_min, t_max)
 }
 
 /// The point of triangle `t` nearest to `p` (Ericson, Real-Time Collision Detection 5.1.5).

@@ -151,7 +151,7 @@ Example:
     /// `bspcsg export` makes it). Four measures, each against a threshold that follows from the
     /// tolerance: surface distance (|SDF| on the mesh: max and p99 ≤ T), coverage (the mesh's
     /// distance from points of the SDF's surface: max ≤ T), rays (512×512 rays from three
-    /// views: ≥ 99.5 % agree on hit or miss, depth difference p99 ≤ 2T), sign (inside/outside
+    /// views: ≥ 99.5 % agree on hit or miss, depth difference p99 ≤ 4T), sign (inside/outside
     /// agreement at points 2T or farther from the surface: ≥ 99.9 %). T is --tolerance, or:
     /// 2 × the chordal tolerance of --via bsp, the cell of --via sdf, 1/250 of the scene's
     /// bounding diagonal for a mesh file. Exit 3 when any measure fails, naming it and the
