@@ -197,3 +197,18 @@ fn intersection_wedge_1e_10_thick() {
         mesh.volume()
     );
 }
+
+/// The union of Cray_left and Cray_right (a box out to ±3.4e38 with a part of 3e4 on it): by
+/// the box's diagonal every triangle around the part is a needle, but needles are removed at
+/// the scale of the region where the operands met, so the part keeps its shape.
+#[test]
+fn cray_union_keeps_the_part_on_the_huge_box() {
+    let (Some(l), Some(r)) = (model("Cray_left.obj"), model("Cray_right.obj")) else {
+        return;
+    };
+    let u = &l | &r;
+    let mesh = u.to_mesh();
+    assert_closed_manifold(&mesh, "cray union");
+    let (top, part) = (mesh.bbox().max.z, l.bbox().max.z.max(r.bbox().max.z));
+    assert_eq!(top, part, "the part's top moved");
+}

@@ -18,7 +18,7 @@ fuzz_target!(|data: &[u8]| {
         assert!(report.is_closed_manifold(), "bake: {report}");
         assert_eq!(report.needles, 0, "bake: {report}");
     }
-    let bbox = scene.bounds();
+    let bbox = scene.bbox();
     let diagonal = bbox.diagonal();
     if !(diagonal.is_finite() && diagonal > 0.0) {
         return;

@@ -32,9 +32,13 @@ use crate::geom::{Aabb, MAX_MOVE, NEEDLE_AREA, Tolerance, is_zero_area};
 use crate::hash::FxHashMap;
 
 /// Removes the needles it can from `mesh`, keeping it closed and oriented. Returns how many
-/// needles remain. Triangles that use an index out of range or a non-finite position make the
-/// mesh be left alone (it is not one this pass can reason about).
-pub(crate) fn remove_needles(mesh: &mut Mesh) -> usize {
+/// needles (by the thresholds used here) remain. Triangles that use an index out of range or a
+/// non-finite position make the mesh be left alone (it is not one this pass can reason about).
+///
+/// `scale`, where given, caps the diagonal the thresholds are taken from: a boolean passes the
+/// size of the region where its operands met, so a part joined to a box 10³⁸ across keeps its
+/// triangles (by the box's diagonal, every one of them would be a needle).
+pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
     let n = mesh.positions.len();
     if mesh
         .triangles
@@ -44,7 +48,7 @@ pub(crate) fn remove_needles(mesh: &mut Mesh) -> usize {
     {
         return 0;
     }
-    let mut work = Work::new(mesh);
+    let mut work = Work::new(mesh, scale.unwrap_or(f64::INFINITY));
     let mut queue: Vec<u32> = (0..work.tris.len() as u32)
         .filter(|&t| work.is_needle(t))
         .collect();
@@ -91,7 +95,7 @@ struct Work {
 }
 
 impl Work {
-    fn new(mesh: &Mesh) -> Self {
+    fn new(mesh: &Mesh, scale: f64) -> Self {
         let n = mesh.positions.len();
         let mut sets = DisjointSets::new(n);
         for t in &mesh.triangles {
@@ -117,7 +121,7 @@ impl Work {
         for v in 0..n {
             shell[v] = shell[sets.find(v)];
         }
-        let diag: Vec<f64> = boxes.iter().map(Aabb::diagonal).collect();
+        let diag: Vec<f64> = boxes.iter().map(|b| b.diagonal().min(scale)).collect();
         let mut edges =
             FxHashMap::with_capacity_and_hasher(mesh.triangles.len() * 3, Default::default());
         let mut around: Vec<SmallVec<[u32; 8]>> = vec![SmallVec::new(); n];

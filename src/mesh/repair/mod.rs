@@ -29,6 +29,7 @@ use smallvec::SmallVec;
 
 use super::Mesh;
 use super::weld::{Wide, weld_within};
+use crate::geom::Tolerance;
 use crate::polygon::{Polygon, dedup_ring};
 
 /// Positions closer than this many plane tolerances are one vertex; a vertex this close to an
@@ -67,8 +68,11 @@ pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64) -> Mesh {
     if !cracks.is_empty() {
         (mesh, cracks) = repair(polygons, delta, &wide, false, None);
     }
+    // Needles are judged at the scale of the region the boolean worked in (see
+    // [`super::needles::remove_needles`]).
+    let scale = Some(eps / Tolerance::RELATIVE);
     if cracks.is_empty() {
-        super::needles::remove_needles(&mut mesh);
+        super::needles::remove_needles(&mut mesh, scale);
         return mesh;
     }
     let mut best = Attempt::new(mesh, cracks.len());
@@ -93,7 +97,7 @@ pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64) -> Mesh {
         best.consider(mesh, left.len());
     }
     let mut mesh = best.mesh;
-    super::needles::remove_needles(&mut mesh);
+    super::needles::remove_needles(&mut mesh, scale);
     mesh
 }
 
