@@ -225,3 +225,125 @@ fn gltf_instancing_over_the_triangle_budget_is_refused_quickly() {
     let m = read_mesh(&doc).unwrap();
     assert!(m.triangle_count() > 0 && m.triangle_count() <= 24_000);
 }
+
+/// A closed box mesh written to `path` in the format its extension names.
+fn box_file(path: &Path, min: f64) -> std::path::PathBuf {
+    let m = common::obj_box_mesh(
+        bspcsg::glam::DVec3::splat(min),
+        bspcsg::glam::DVec3::splat(min + 1.0),
+    );
+    bspcsg::write_mesh(path, &m, &[]).unwrap();
+    path.to_path_buf()
+}
+
+/// Item 5: a sidecar (`X.bin` for `-o X.gltf`, `X.mtl` for `-o X.obj`) never replaces an
+/// input or a file an input needs; the command exits 1 before any work, the input intact.
+#[test]
+fn sidecar_never_replaces_an_input_or_its_buffer() {
+    let s = Scratch::new("sidecar");
+    fs::write(s.path("cube.bin"), tetra_buffer()).unwrap();
+    let g = s.path("g.gltf");
+    fs::write(&g, tetra_gltf("cube.bin", 72, r#"[{"mesh": 0}]"#, "[0]")).unwrap();
+    let b = box_file(&s.path("b.obj"), 0.25);
+    let before = fs::read(s.path("cube.bin")).unwrap();
+
+    let out = s.path("cube.gltf");
+    let run = bspcsg([
+        OsStr::new("union"),
+        g.as_os_str(),
+        b.as_os_str(),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ])
+    .code(1);
+    assert!(
+        run.stderr.contains("cube.bin") && run.stderr.contains("g.gltf"),
+        "{}",
+        run.stderr
+    );
+    assert!(!out.exists());
+    assert_eq!(fs::read(s.path("cube.bin")).unwrap(), before);
+    assert_eq!(read_mesh(&g).unwrap().triangle_count(), 4);
+
+    // An OBJ input's `mtllib`.
+    let c = s.path("c.obj");
+    let text = fs::read_to_string(&b).unwrap();
+    fs::write(&c, format!("mtllib shared.mtl\n{text}")).unwrap();
+    fs::write(s.path("shared.mtl"), "newmtl keep\n").unwrap();
+    let out = s.path("shared.obj");
+    let run = bspcsg([
+        OsStr::new("union"),
+        c.as_os_str(),
+        b.as_os_str(),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ])
+    .code(1);
+    assert!(run.stderr.contains("shared.mtl"), "{}", run.stderr);
+    assert_eq!(
+        fs::read_to_string(s.path("shared.mtl")).unwrap(),
+        "newmtl keep\n"
+    );
+    // Away from inputs, the same command writes both files.
+    let out = s.path("fresh.gltf");
+    bspcsg([
+        OsStr::new("union"),
+        g.as_os_str(),
+        b.as_os_str(),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ])
+    .ok();
+    assert!(s.path("fresh.bin").exists());
+    assert!(read_mesh(&out).unwrap().triangle_count() > 0);
+}
+
+/// Item 9 (two-file part): `-o x.bin --format gltf` would write its own buffer over itself.
+#[test]
+fn gltf_output_named_as_its_own_buffer_is_refused() {
+    let s = Scratch::new("own_buffer");
+    let b = box_file(&s.path("b.obj"), 0.0);
+    let out = s.path("x.bin");
+    let run = bspcsg([
+        OsStr::new("convert"),
+        b.as_os_str(),
+        OsStr::new("--format"),
+        OsStr::new("gltf"),
+        OsStr::new("-o"),
+        out.as_os_str(),
+    ])
+    .code(1);
+    assert!(
+        run.stderr.contains("would be the output itself"),
+        "{}",
+        run.stderr
+    );
+    assert!(!out.exists());
+    // The library refuses it too.
+    let m = read_mesh(&b).unwrap();
+    let e = bspcsg::write_mesh_as(&out, &m, &[], bspcsg::Format::Gltf).unwrap_err();
+    assert!(e.to_string().contains("output itself"), "{e}");
+    assert_eq!(s.files(), ["b.obj"]);
+}
+
+/// Item 9 (two-file part): when the main file cannot be renamed into place, the companion
+/// replaced before it is put back, so the old main file never points at a new companion.
+#[test]
+fn failed_main_rename_restores_the_old_companion() {
+    let s = Scratch::new("rollback");
+    let m = read_mesh(&box_file(&s.path("b.obj"), 0.0)).unwrap();
+    fs::write(s.path("out.bin"), b"old buffer").unwrap();
+    // A non-empty directory where the main file goes: its rename fails after the companion's.
+    fs::create_dir(s.path("out.gltf")).unwrap();
+    fs::write(s.path("out.gltf/keep"), b"x").unwrap();
+    let e = bspcsg::write_mesh_as(s.path("out.gltf"), &m, &[], bspcsg::Format::Gltf);
+    assert!(e.is_err());
+    assert_eq!(fs::read(s.path("out.bin")).unwrap(), b"old buffer");
+    // No temporary or backup file left behind.
+    assert_eq!(s.files(), ["b.obj", "out.bin", "out.gltf"]);
+
+    // Without an old companion, the new one is removed again.
+    fs::remove_file(s.path("out.bin")).unwrap();
+    assert!(bspcsg::write_mesh_as(s.path("out.gltf"), &m, &[], bspcsg::Format::Gltf).is_err());
+    assert_eq!(s.files(), ["b.obj", "out.gltf"]);
+}

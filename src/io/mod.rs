@@ -276,6 +276,19 @@ pub fn write_mesh_as(
     };
     // The main file comes first in `files`; companions are renamed before it so that a reader
     // never sees a main file that refers to a missing or stale companion.
+    if let Some(c) = files.companions.iter().find(|c| c.path == path) {
+        return Err(Error::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                format!(
+                    "the {format} companion {} would be the output itself; give the output \
+                     its format's extension",
+                    c.path.display()
+                ),
+            ),
+        });
+    }
     let mut outputs = files.companions;
     outputs.push(OutFile {
         path: path.to_path_buf(),
@@ -413,16 +426,78 @@ impl Drop for TempFile {
 }
 
 /// Writes every file to a temporary first and renames them, in order, only once all are
-/// complete.
+/// complete. The last file is the main one; each companion replaced before it is kept as a
+/// hidden backup until the main file is in place, and put back if that rename fails, so the
+/// old main file never refers to a new companion.
 fn write_atomically(files: &[OutFile]) -> Result<()> {
     let mut temps = Vec::with_capacity(files.len());
     for f in files {
         temps.push(TempFile::write(&f.path, &f.bytes)?);
     }
-    for t in &mut temps {
-        t.rename()?;
+    let Some((main, companions)) = temps.split_last_mut() else {
+        return Ok(());
+    };
+    let mut backups: Vec<Backup> = Vec::new();
+    let mut created: Vec<PathBuf> = Vec::new();
+    let result = (|| {
+        for t in companions.iter_mut() {
+            match Backup::of(&t.dest)? {
+                Some(b) => backups.push(b),
+                None => created.push(t.dest.clone()),
+            }
+            t.rename()?;
+        }
+        main.rename()
+    })();
+    match result {
+        Ok(()) => {
+            for b in backups {
+                let _ = fs::remove_file(&b.copy);
+            }
+            Ok(())
+        }
+        Err(e) => {
+            // Restore the companions the old main file refers to; drop new ones.
+            for b in backups {
+                let _ = fs::rename(&b.copy, &b.dest);
+            }
+            for c in created {
+                let _ = fs::remove_file(c);
+            }
+            Err(e)
+        }
     }
-    Ok(())
+}
+
+/// An existing file kept under a hidden name beside it while it is being replaced.
+struct Backup {
+    dest: PathBuf,
+    copy: PathBuf,
+}
+
+impl Backup {
+    /// A hard link to `dest` (a copy where links are not supported), or `None` when `dest`
+    /// does not exist yet.
+    fn of(dest: &Path) -> Result<Option<Backup>> {
+        if fs::symlink_metadata(dest).is_err() {
+            return Ok(None);
+        }
+        let n = TEMP_COUNTER.fetch_add(1, Ordering::Relaxed);
+        let mut name = std::ffi::OsString::from(".");
+        name.push(dest.file_name().unwrap_or_default());
+        name.push(format!(".{}.{n}.old", std::process::id()));
+        let copy = dest.with_file_name(name);
+        fs::hard_link(dest, &copy)
+            .or_else(|_| fs::copy(dest, &copy).map(|_| ()))
+            .map_err(|source| Error::Io {
+                path: dest.to_path_buf(),
+                source,
+            })?;
+        Ok(Some(Backup {
+            dest: dest.to_path_buf(),
+            copy,
+        }))
+    }
 }
 
 #[cfg(test)]

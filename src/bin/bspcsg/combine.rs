@@ -1,17 +1,19 @@
 //! `union`, `intersection`, `difference`: read each input as a solid, combine, write.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use bspcsg::{BoolOp, FromMeshOptions, Material, MeshDefect, boolean_all, read_solid};
 
 use crate::cli::BooleanArgs;
 use crate::failure::Failure;
-use crate::output::{finish, output_target};
+use crate::output::{finish, output_target, protect_inputs};
 use crate::progress::Progress;
 
 /// `union`, `intersection`, `difference`.
 pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Result<(), Failure> {
     let (out, format) = output_target(&args.output)?;
+    let inputs: Vec<&Path> = args.inputs.iter().map(PathBuf::as_path).collect();
+    protect_inputs(out, format, true, &inputs)?;
     let options = if args.allow_open {
         FromMeshOptions::lenient()
     } else {

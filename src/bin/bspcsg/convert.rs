@@ -4,12 +4,13 @@ use bspcsg::read_mesh;
 
 use crate::cli::ConvertArgs;
 use crate::failure::Failure;
-use crate::output::{finish, output_target};
+use crate::output::{finish, output_target, protect_inputs};
 use crate::progress::Progress;
 
 /// `convert`.
 pub(crate) fn convert(args: &ConvertArgs, progress: &Progress) -> Result<(), Failure> {
     let (out, format) = output_target(&args.output)?;
+    protect_inputs(out, format, false, &[args.input.as_path()])?;
     progress.step(format!("reading {}", args.input.display()));
     let mesh = read_mesh(&args.input)?;
     finish(out, format, &mesh, &[], progress)

@@ -121,3 +121,103 @@ pub(crate) fn print_stdout(text: &str) -> Result<(), Failure> {
 pub(crate) fn print_stderr(line: &str) {
     let _ = writeln!(std::io::stderr().lock(), "{line}");
 }
+
+/// Refuses an output whose companion file (`X.bin` beside `X.gltf`, `X.mtl` beside `X.obj`)
+/// would replace one of the inputs or a file an input refers to (a glTF buffer, an OBJ
+/// `mtllib`), or the output itself (`-o x.bin --format gltf`): the main output may replace
+/// an input, which is read in full first, but a companion would break the input that needs it.
+/// OBJ writes its `.mtl` only with `materials`.
+pub(crate) fn protect_inputs(
+    out: &Path,
+    format: Format,
+    materials: bool,
+    inputs: &[&Path],
+) -> Result<(), Failure> {
+    let companion = match format {
+        Format::Gltf => out.with_extension("bin"),
+        Format::Obj if materials => out.with_extension("mtl"),
+        _ => return Ok(()),
+    };
+    if companion == out || same_file(&companion, out) {
+        return Err(Failure::usage_or_io(format!(
+            "{}: cannot write the output: its companion {} would be the output itself; \
+             give the output its format's extension",
+            out.display(),
+            companion.display()
+        )));
+    }
+    for input in inputs {
+        let mut needed = vec![input.to_path_buf()];
+        needed.extend(referenced_files(input));
+        if let Some(hit) = needed.iter().find(|p| same_file(&companion, p)) {
+            return Err(Failure::usage_or_io(format!(
+                "{}: cannot write the output: its companion {} would replace {}, which the \
+                 input {} needs; choose another output name",
+                out.display(),
+                companion.display(),
+                hit.display(),
+                input.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Whether two paths name one existing file.
+fn same_file(a: &Path, b: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt as _;
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        (Ok(x), Ok(y)) => x.dev() == y.dev() && x.ino() == y.ino(),
+        _ => false,
+    }
+}
+
+/// The files beside `input` that it refers to: a glTF's buffer and image URIs, an OBJ's
+/// `mtllib` names. Best effort: an unreadable input yields none (reading it reports that).
+fn referenced_files(input: &Path) -> Vec<PathBuf> {
+    let dir = input.parent().unwrap_or(Path::new(""));
+    let Ok(bytes) = std::fs::read(input) else {
+        return Vec::new();
+    };
+    let mut names = Vec::new();
+    if let Ok(doc) = serde_json::from_slice::<serde_json::Value>(&bytes) {
+        for key in ["buffers", "images"] {
+            for item in doc[key].as_array().into_iter().flatten() {
+                if let Some(uri) = item["uri"].as_str().filter(|u| !u.starts_with("data:")) {
+                    names.push(percent_decoded(uri));
+                }
+            }
+        }
+    } else {
+        let text = String::from_utf8_lossy(&bytes);
+        for line in text.lines() {
+            if let Some(rest) = line.trim_start().strip_prefix("mtllib") {
+                names.extend(rest.split_whitespace().map(str::to_owned));
+            }
+        }
+    }
+    names.into_iter().map(|n| dir.join(n)).collect()
+}
+
+/// `%XX` escapes decoded where well formed; others kept as written.
+fn percent_decoded(uri: &str) -> String {
+    let b = uri.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut k = 0;
+    while k < b.len() {
+        let hex = b
+            .get(k + 1..k + 3)
+            .and_then(|h| std::str::from_utf8(h).ok());
+        match (b[k], hex.and_then(|h| u8::from_str_radix(h, 16).ok())) {
+            (b'%', Some(v)) => {
+                out.push(v);
+                k += 3;
+            }
+            (c, _) => {
+                out.push(c);
+                k += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
