@@ -331,7 +331,7 @@ fn gltf_output_named_as_its_own_buffer_is_refused() {
 #[test]
 fn failed_main_rename_restores_the_old_companion() {
     let s = Scratch::new("rollback");
-    let m = read_mesh(&box_file(&s.path("b.obj"), 0.0)).unwrap();
+    let m = read_mesh(box_file(&s.path("b.obj"), 0.0)).unwrap();
     fs::write(s.path("out.bin"), b"old buffer").unwrap();
     // A non-empty directory where the main file goes: its rename fails after the companion's.
     fs::create_dir(s.path("out.gltf")).unwrap();
