@@ -78,6 +78,17 @@ pub enum Error {
         message: String,
     },
 
+    /// A file asks for more than a reader's budget (see [`crate::MAX_READ_TRIANGLES`] and
+    /// [`crate::MAX_BUFFER_BYTES`]); refused before the memory is allocated. Remedy: split the
+    /// file, or reduce its instancing.
+    #[error("{}: {message}", path.display())]
+    OverBudget {
+        /// The file involved.
+        path: PathBuf,
+        /// What exceeds which limit.
+        message: String,
+    },
+
     /// A scene document is invalid. `json_path` locates the fault, e.g. `$.children[2].data.radius`;
     /// `file` names the document where it was read from a file.
     #[error("{}{json_path}: {message}", file.as_ref().map(|f| format!("{}: ", f.display())).unwrap_or_default())]

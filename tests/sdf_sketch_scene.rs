@@ -259,3 +259,48 @@ fn faults_name_their_path() {
         assert!(err.starts_with(&format!("{path}:")), "{err} (want {path})");
     }
 }
+
+#[test]
+fn twisted_extrusion_distance_is_negative_inside_and_zero_only_on_the_surface() {
+    // Inside the solid the bound must stay negative (not clipped by the box term), and on the
+    // box around the column it must stay positive (a box or cylinder distance alone would be
+    // zero there, where sphere tracing would report a false surface).
+    let s = scene(
+        r#"{"op": "extrude", "extrude_depth": 2, "twist": 90, "scale_top": 0.6,
+            "source_2d_sdf": {"op": "subtract", "children": [
+                {"type": "regular_polygon", "sides": 6, "radius": 0.8},
+                {"type": "circle", "radius": 0.2}]}}"#,
+    );
+    let solid = s
+        .to_solid(&TessellationOptions::with_tolerance(1e-3))
+        .unwrap();
+    let classifier = solid.classifier();
+    let b = s.bbox();
+    let mut rng = Rng(11);
+    let (mut inside, mut outside) = (0, 0);
+    for _ in 0..2000 {
+        let p = b.min + (b.max - b.min) * DVec3::new(rng.next(), rng.next(), rng.next());
+        let d = s.distance(p);
+        // Within the tessellation tolerance of the surface the two may differ.
+        match classifier.classify(p) {
+            Containment::Inside => {
+                assert!(d < 1e-3, "{p}: {d} inside");
+                inside += (d < 0.0) as usize;
+            }
+            Containment::Outside => {
+                assert!(d > -1e-3, "{p}: {d} outside");
+                outside += 1;
+            }
+            Containment::OnBoundary => {}
+        }
+    }
+    assert!(inside > 100 && outside > 100, "{inside} {outside}");
+    // On the faces of the bounding box, away from the column, the distance is positive.
+    for p in [
+        DVec3::new(b.max.x, b.max.y, 0.0),
+        DVec3::new(b.min.x, 0.0, 0.9),
+        DVec3::new(b.max.x, b.min.y, -0.9),
+    ] {
+        assert!(s.distance(p) > 0.05, "{p}: {}", s.distance(p));
+    }
+}

@@ -20,6 +20,16 @@ mod gltf;
 mod obj;
 mod stl;
 
+/// The largest glTF buffer file read, in bytes (2 GiB): beyond any mesh held in memory here,
+/// small enough that a hostile `byteLength` cannot claim the machine's memory.
+pub const MAX_BUFFER_BYTES: u64 = 1 << 31;
+
+/// The most triangles a reader returns, counted after glTF instancing (each primitive times
+/// the nodes that place it) and checked before any is allocated: 20 million triangles take
+/// about 1 GB as a [`Mesh`], and more as BSP polygons. A small document naming one mesh
+/// thousands of times is refused with [`Error::OverBudget`] instead of exhausting memory.
+pub const MAX_READ_TRIANGLES: u64 = 20_000_000;
+
 /// A mesh file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Format {

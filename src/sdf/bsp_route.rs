@@ -221,7 +221,9 @@ impl Ctx<'_> {
                 },
             ),
             Shape::Revolve { shape, angle } => {
-                let profile = shape.to_sketch(self.tol / frame.sigma_max)?;
+                // The profile's chords and the turn's chords both cut inside the true surface:
+                // half the tolerance each keeps their sum within it.
+                let profile = shape.to_sketch(0.5 * self.tol / frame.sigma_max)?;
                 // The half-plane x ≥ 0: a rectangle from the axis past the profile's reach.
                 let [lo, hi] = profile.bounds().unwrap_or([DVec2::ZERO; 2]);
                 let reach = hi.x.max(0.0);
@@ -231,7 +233,8 @@ impl Ctx<'_> {
                 let span = hi - lo;
                 let half_plane = Sketch::rectangle(2.0 * reach, 2.0 * span.y)?
                     .translate(DVec2::new(reach, 0.5 * (lo.y + hi.y)))?;
-                (&profile & &half_plane).revolve(*angle, self.segments(reach, frame)?)
+                let segments = segments_for_tolerance(reach * frame.sigma_max, 0.5 * self.tol)?;
+                (&profile & &half_plane).revolve(*angle, segments)
             }
         }
     }

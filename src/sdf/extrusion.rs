@@ -4,9 +4,12 @@
 //! Without twist or scale the distance is exact. Otherwise each slice at height z is the shape
 //! turned by θ(z) and scaled by s(z), and the slice's own 2D distance `g` (1-Lipschitz across the
 //! slice) changes along z at most `L_z` per unit: `k·ρ` from the turn (k radians per unit, ρ the
-//! distance from the axis) plus `|s'|·R` from the scale (R the shape's reach). Dividing by
-//! `L = √(1 + L_z²)` makes it a bound that never overshoots, within a cylinder about the axis
-//! that holds every slice; outside it, the distance to that cylinder is the bound.
+//! distance from the axis) plus `|s'|·R` from the scale (R the shape's reach). On the segment
+//! from a point to its nearest surface point ρ never exceeds `ρ_m = max(ρ, reach)` (the reach
+//! of every slice), so `g / √(1 + L_z(ρ_m)²)` never overestimates, and it is zero only on the
+//! surface — a bounding cylinder's distance would be zero on the cylinder too, where sphere
+//! tracing would stall. The larger of it and the distance to the local box keeps far points'
+//! steps long.
 
 use glam::{DVec2, DVec3};
 
@@ -24,8 +27,10 @@ pub(crate) struct Extrusion {
     pub scale_top: DVec2,
     /// The radius of a cylinder about z holding every slice.
     reach: f64,
-    /// The Lipschitz bound `L` of the sliced field (1 for a plain extrusion).
-    lipschitz: f64,
+    /// How fast the slice field can change along z: `turn · ρ + scale_rate + scale_per_rho · ρ`.
+    turn: f64,
+    scale_rate: f64,
+    scale_per_rho: f64,
 }
 
 impl Extrusion {
@@ -33,23 +38,24 @@ impl Extrusion {
         let r = shape.reach();
         let reach = r * scale_top.max_element().max(1.0);
         let height = 2.0 * half_depth;
-        let k = twist.to_radians().abs() / height;
+        let turn = twist.to_radians().abs() / height;
         let ds = (scale_top - DVec2::ONE).abs() / height;
-        let from_scale = if scale_top.x == scale_top.y {
-            ds.x * r
+        let (scale_rate, scale_per_rho) = if scale_top.x == scale_top.y {
+            (ds.x * r, 0.0)
         } else {
             // Per-axis: the slice field is m(z)·d(D(z)⁻¹ p) with m the smaller factor.
             let smin = scale_top.min_element().min(1.0);
-            ds.max_element() * (2.0 * reach / smin + r)
+            (ds.max_element() * r, ds.max_element() * 2.0 / smin)
         };
-        let lz = k * reach + from_scale;
         Extrusion {
             shape,
             half_depth,
             twist,
             scale_top,
             reach,
-            lipschitz: (1.0 + lz * lz).sqrt(),
+            turn,
+            scale_rate,
+            scale_per_rho,
         }
     }
 
@@ -64,28 +70,18 @@ impl Extrusion {
             return extrusion(self.shape.distance(xy), p.z, h);
         }
         let cap = p.z.abs() - h;
-        let rho = xy.length();
-        if rho > self.reach {
-            // Outside the cylinder: the distance to it, or the bound at the nearest point on it
-            // less the way there (distances are 1-Lipschitz), whichever is larger. The first
-            // alone falls to zero all around the cylinder, a phantom surface for sphere tracing.
-            let out = rho - self.reach;
-            let on = DVec3::new(p.x / rho * self.reach, p.y / rho * self.reach, p.z);
-            return out.max(self.sliced(on, cap) - out);
-        }
-        self.sliced(p, cap)
-    }
-
-    /// The sliced bound inside the cylinder, capped by `cap`.
-    fn sliced(&self, p: DVec3, cap: f64) -> f64 {
-        let h = self.half_depth;
-        let xy = DVec2::new(p.x, p.y);
+        let rho = xy.length().max(self.reach);
+        let lz = (self.turn + self.scale_per_rho) * rho + self.scale_rate;
         let t = ((p.z + h) / (2.0 * h)).clamp(0.0, 1.0);
         let s = DVec2::ONE.lerp(self.scale_top, t).max(DVec2::splat(1e-12));
         let turn = DVec2::from_angle(-(self.twist * t).to_radians());
         let q = turn.rotate(xy) / s;
         let g = self.shape.distance(q) * s.min_element();
-        (g / self.lipschitz).max(cap)
+        let d = (g / (1.0 + lz * lz).sqrt()).max(cap);
+        // Outside the local box its distance is a bound too, and long for far points.
+        let b = self.local_bounds();
+        let outside = (b.min - p).max(p - b.max).max(DVec3::ZERO).length();
+        if outside > 0.0 { d.max(outside) } else { d }
     }
 
     pub(crate) fn local_bounds(&self) -> Aabb {

@@ -104,7 +104,22 @@ impl Shape {
             Shape::Torus { major, minor } => {
                 each!(|p| DVec2::new(DVec2::new(p.x, p.z).length() - major, p.y).length() - minor)
             }
-            _ => each!(|p| self.distance(p)),
+            Shape::Cone {
+                r_bottom,
+                r_top,
+                half_height,
+            } => each!(|p| capped_cone(p, *half_height, *r_bottom, *r_top)),
+            Shape::Plane { normal, offset } => each!(|p| normal.dot(p) + offset),
+            // Each of these arms names its own shape's function: calling `self.distance` here
+            // would match again per point, and whether that match is inlined depends on how the
+            // crate happens to be split into codegen units (measured: the mechanical bake ran
+            // 30 % slower when it was not).
+            Shape::Pyramid { base, height } => each!(|p| {
+                let q = (p + DVec3::new(0.0, 0.5 * height, 0.0)) / base;
+                pyramid(q, height / base) * base
+            }),
+            Shape::Extrude(e) => each!(|p| e.distance(p)),
+            Shape::Revolve { shape, angle } => each!(|p| revolution(shape, *angle, p)),
         }
     }
 

@@ -20,11 +20,11 @@ impl Failure {
 
 impl From<Error> for Failure {
     /// The library's errors name their file already (except scene faults, which the export
-    /// command prefixes). Invalid geometry exits 2; everything else concerns reading, parsing,
+    /// command prefixes). Invalid geometry and input over a reader's budget exit 2; everything else concerns reading, parsing,
     /// options or writing, and exits 1.
     fn from(e: Error) -> Self {
         let code = match e {
-            Error::InvalidMesh { .. } => 2,
+            Error::InvalidMesh { .. } | Error::OverBudget { .. } => 2,
             _ => 1,
         };
         Failure {

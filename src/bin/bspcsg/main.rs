@@ -18,10 +18,12 @@ macro_rules! exit_codes {
   0  success
   1  usage error; a file that cannot be read, parsed or written (a missing or truncated
      file, a syntax error, NaN or infinite coordinates, a vertex index out of range, an
-     unknown extension, an invalid scene document); nothing is written
+     unknown extension, an invalid scene document, a glTF buffer URI that is not a regular
+     file inside the document's folder); nothing is written
   2  invalid geometry: an input mesh that does not bound a solid (open, non-manifold,
      inside out; --allow-open goes on anyway), or a result the output format cannot hold
-     (coordinates beyond float32); nothing is written
+     (coordinates beyond float32); an input over the reader's budget (a glTF placing more
+     than 20 million triangles after instancing); nothing is written
   3  check: the mesh disagrees with the scene (each failed measure is named with its
      value, its limit and the worst place)"
     };

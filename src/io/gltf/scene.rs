@@ -11,7 +11,7 @@ use super::accessor::Reader;
 use super::container::{GLB_MAGIC, split_glb};
 use super::uri::load_buffers;
 use crate::error::{Error, Result};
-use crate::io::parse_error;
+use crate::io::{MAX_READ_TRIANGLES, parse_error};
 use crate::mesh::Mesh;
 use crate::mesh::weld::Welder;
 
@@ -23,13 +23,16 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh> {
         (bytes, None)
     };
     let doc = document(path, json_bytes)?;
+    let nodes: Vec<gltf::Node> = doc.nodes().collect();
+    let scenes = scene_roots(&doc, &nodes);
+    // Before any buffer is read or triangle allocated.
+    check_budget(path, &doc, &nodes, &scenes)?;
     let buffers = load_buffers(path, &doc, blob)?;
     let reader = Reader { path, buffers };
 
     let mut welder = Welder::default();
     let mut triangles = Vec::new();
-    let nodes: Vec<gltf::Node> = doc.nodes().collect();
-    for roots in scene_roots(&doc, &nodes) {
+    for roots in scenes {
         // Valid glTF node hierarchies are disjoint trees; a node met twice in one scene means
         // a cycle or a shared child, which would loop forever or duplicate geometry.
         let mut seen = vec![false; nodes.len()];
@@ -58,6 +61,61 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh> {
         }
     }
     Ok(Mesh::new(welder.positions, triangles))
+}
+
+/// Refuses a document whose scenes would place more than [`MAX_READ_TRIANGLES`] triangles:
+/// each primitive's triangle count (from its accessors' declared counts) times the nodes that
+/// draw it. Counts only, so a 1 KB document asking for 10⁹ triangles is refused in microseconds.
+fn check_budget(
+    path: &Path,
+    doc: &gltf::Document,
+    nodes: &[gltf::Node],
+    scenes: &[Vec<usize>],
+) -> Result<()> {
+    let per_mesh: Vec<u64> = doc
+        .meshes()
+        .map(|m| m.primitives().map(|p| primitive_triangles(&p)).sum())
+        .collect();
+    let mut total: u64 = 0;
+    let mut instances: u64 = 0;
+    for roots in scenes {
+        // A node met twice is skipped here; the walk that reads the mesh reports it.
+        let mut seen = vec![false; nodes.len()];
+        let mut stack: Vec<usize> = roots.clone();
+        while let Some(i) = stack.pop() {
+            if i >= nodes.len() || std::mem::replace(&mut seen[i], true) {
+                continue;
+            }
+            if let Some(m) = nodes[i].mesh() {
+                instances += 1;
+                total = total.saturating_add(per_mesh[m.index()]);
+            }
+            stack.extend(nodes[i].children().map(|c| c.index()));
+        }
+    }
+    if total > MAX_READ_TRIANGLES {
+        return Err(Error::OverBudget {
+            path: path.to_path_buf(),
+            message: format!(
+                "the scene places {total} triangles ({instances} mesh instances), more than the \
+                 reader's limit of {MAX_READ_TRIANGLES} (bspcsg::MAX_READ_TRIANGLES)"
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// An upper bound on the triangles a primitive yields, from declared accessor counts.
+fn primitive_triangles(prim: &gltf::Primitive) -> u64 {
+    let count = match (prim.indices(), prim.get(&gltf::Semantic::Positions)) {
+        (Some(a), _) | (None, Some(a)) => a.count() as u64,
+        (None, None) => 0,
+    };
+    match prim.mode() {
+        gltf::mesh::Mode::Triangles => count / 3,
+        gltf::mesh::Mode::TriangleStrip | gltf::mesh::Mode::TriangleFan => count.saturating_sub(2),
+        _ => 0,
+    }
 }
 
 /// The glTF JSON parsed and validated, refusing required extensions.

@@ -79,15 +79,21 @@ struct LeafFrame {
     n: [usize; 3],
     /// The index the block's first new vertex will have in its part.
     base: u32,
+    /// Sample points along x and y (`d + 1`), kept for [`LeafFrame::idx`] in the hot loops.
+    px: usize,
+    py: usize,
 }
 
 impl LeafFrame {
     fn new(g: &Grid, b: &Block, base: u32) -> Self {
+        let d = [0, 1, 2].map(|i| b.hi[i] - b.lo[i]);
         LeafFrame {
             lo: b.lo,
-            d: [0, 1, 2].map(|i| b.hi[i] - b.lo[i]),
+            d,
             n: g.n,
             base,
+            px: d[0] + 1,
+            py: d[1] + 1,
         }
     }
 
@@ -103,8 +109,7 @@ impl LeafFrame {
     /// The index of local sample point `(i, j, k)`.
     #[inline]
     fn idx(&self, i: usize, j: usize, k: usize) -> usize {
-        let [px, py, _] = self.points();
-        (k * py + j) * px + i
+        (k * self.py + j) * self.px + i
     }
 
     /// True for a local point on the grid's box.
