@@ -68,3 +68,29 @@ fn a_flat_shell_without_tiny_turns() {
         0x26, 0x10, 0xa4, 0xc7, 0x2c, 0x9e, 0xa4, 0x86, 0x08, 0xb2, 0x2a,
     ]);
 }
+
+/// Found by a 10-minute run of the `scenes` target: variations of the example bracket whose BSP
+/// route (tolerance 1/20, cell 1/12 of the diagonal) gives a flat inverted shell
+/// (`scene_1`, `scene_2`, `scene_4`, `scene_5`) or keeps a needle (`scene_3`). Open (see the
+/// closing note of issue 11).
+#[test]
+#[ignore = "open: the BSP route of coarse bracket variants leaves a flat shell or a needle"]
+fn scenes_bsp_route_of_coarse_brackets() {
+    for i in 1..=5 {
+        let path = format!(
+            "{}/tests/fuzz_findings/scene_{i}.json",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let scene = bspcsg::Scene::from_json_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let d = scene.bbox().diagonal();
+        let coarse = bspcsg::TessellationOptions {
+            tolerance: Some(d / 20.0),
+            cell: Some(d / 12.0),
+        };
+        let report = scene.to_solid(&coarse).unwrap().to_mesh().report();
+        assert!(
+            report.is_closed_manifold() && report.needles == 0,
+            "scene_{i}: {report}"
+        );
+    }
+}
