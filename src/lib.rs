@@ -40,7 +40,7 @@
 //!
 //! ```
 //! use bspcsg::Sketch;
-//! use glam::DVec2;
+//! use bspcsg::glam::DVec2;
 //! let washer = &Sketch::circle(1.0, 1e-3)? - &Sketch::circle(0.5, 1e-3)?;
 //! assert_eq!(washer.extrude(0.2)?.to_mesh().report().genus, Some(1));
 //! // Turned about the y axis, the washer is a torus with a torus-shaped cavity: two shells.

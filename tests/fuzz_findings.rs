@@ -8,7 +8,7 @@ fn replay(data: &[u8]) {
     replay_with(data, true);
 }
 
-/// Replays with tiny rotations off, as the bounded CI run decodes its inputs.
+/// Replays with tiny rotations on or off (`tiny`; the bounded CI run has them off).
 fn replay_with(data: &[u8], tiny: bool) {
     if let Err(e) = program::run(data, tiny) {
         panic!("{e}");
@@ -52,7 +52,8 @@ fn union_with_a_box_turned_1e_9_degrees_on_a_shared_plane() {
 }
 
 /// Found by a 10-minute run of the `booleans` target (artifact crash-10f977ea…); fails the same
-/// way without tiny rotations: a needle left: no flip or collapse within twice its thickness applies. Open (see the closing note of issue 11).
+/// way without tiny rotations: a needle is left, as no flip or collapse within twice its
+/// thickness applies. Open (see the closing note of issue 11).
 #[test]
 #[ignore = "open: a needle left: no flip or collapse within twice its thickness applies"]
 fn a_needle_that_no_flip_or_collapse_removes() {

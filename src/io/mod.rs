@@ -24,7 +24,8 @@ mod stl;
 /// small enough that a hostile `byteLength` cannot claim the machine's memory.
 pub const MAX_BUFFER_BYTES: u64 = 1 << 31;
 
-/// The most triangles a reader returns, counted after glTF instancing (each primitive times
+/// The most triangles the glTF reader returns (OBJ and STL are bounded by their file size
+/// alone), counted after instancing (each primitive times
 /// the nodes that place it) and checked before any is allocated: 20 million triangles take
 /// about 1 GB as a [`Mesh`], and more as BSP polygons. A small document naming one mesh
 /// thousands of times is refused with [`Error::OverBudget`] instead of exhausting memory.

@@ -32,8 +32,9 @@ use crate::geom::{Aabb, MAX_MOVE, NEEDLE_AREA, Tolerance, is_zero_area};
 use crate::hash::FxHashMap;
 
 /// Removes the needles it can from `mesh`, keeping it closed and oriented. Returns how many
-/// needles (by the thresholds used here) remain. Triangles that use an index out of range or a
-/// non-finite position make the mesh be left alone (it is not one this pass can reason about).
+/// needles (by the thresholds used here) remain; 0 also where the mesh is left alone: triangles
+/// that use an index out of range or a non-finite position (not a mesh this pass can reason
+/// about).
 ///
 /// `scale`, where given, caps the diagonal the thresholds are taken from: a boolean passes the
 /// size of the region where its operands met, so a part joined to a box 10³⁸ across keeps its
@@ -48,7 +49,23 @@ pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
     {
         return 0;
     }
-    let mut work = Work::new(mesh, scale.unwrap_or(f64::INFINITY));
+    // Most meshes hold no needle. No shell's diagonal exceeds the whole mesh's, so one pass by
+    // the mesh's threshold proves that before the shells and the edge map are built.
+    let scale = scale.unwrap_or(f64::INFINITY);
+    let mut bbox = Aabb::EMPTY;
+    for &p in &mesh.positions {
+        bbox.grow(p);
+    }
+    let largest_threshold = NEEDLE_AREA * bbox.diagonal().min(scale).powi(2);
+    let corners = |t: &[u32; 3]| t.map(|i| mesh.positions[i as usize]);
+    if !mesh
+        .triangles
+        .iter()
+        .any(|t| area(corners(t)) < largest_threshold)
+    {
+        return 0;
+    }
+    let mut work = Work::new(mesh, scale);
     let mut queue: Vec<u32> = (0..work.tris.len() as u32)
         .filter(|&t| work.is_needle(t))
         .collect();

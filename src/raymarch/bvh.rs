@@ -244,7 +244,9 @@ impl MeshBvh {
         hit
     }
 
-    /// How many triangles the ray crosses with `t > 0` (for inside tests by parity).
+    /// How many triangles the ray crosses with `t > 0`, for inside tests by parity. The
+    /// watertight test hits at least one triangle at a shared edge or vertex and may hit both,
+    /// so a ray through an edge can count twice: callers vote across directions.
     #[must_use]
     pub fn crossings(&self, ray: &Ray) -> usize {
         let mut n = 0;

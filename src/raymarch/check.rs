@@ -243,7 +243,7 @@ pub fn check_mesh(scene: &Scene, mesh: &Mesh, opts: &CheckOptions) -> Result<Che
     }
     let thresholds = CheckThresholds::for_tolerance(tol);
     let surface = surface_distance(scene, mesh, opts);
-    let rays = ray_views(scene, mesh, &bvh, tol, opts)?;
+    let rays = ray_views(scene, &bvh, tol, opts)?;
     let coverage = coverage(scene, &bvh, tol, opts, &rays.surface_points);
     let sign = sign_agreement(scene, &bvh, &bounds, thresholds.sign_band, opts);
 
@@ -391,13 +391,7 @@ struct PixelPair {
     grazing: bool,
 }
 
-fn ray_views(
-    scene: &Scene,
-    mesh: &Mesh,
-    bvh: &MeshBvh,
-    tol: f64,
-    opts: &CheckOptions,
-) -> Result<RayViews> {
+fn ray_views(scene: &Scene, bvh: &MeshBvh, tol: f64, opts: &CheckOptions) -> Result<RayViews> {
     let frame_box = framing_bounds(scene).union(&bvh.bounds());
     let n = opts.ray_size;
     let mut render = RenderOptions::with_profile(scene.render_profile().clone());
@@ -405,7 +399,6 @@ fn ray_views(
     render.pixel_epsilon = 0.0;
     render.profile.hit_epsilon = render.profile.hit_epsilon.min(0.05 * tol);
     render.profile.max_steps = render.profile.max_steps.max(256);
-    let _ = mesh;
     let mut views = Vec::new();
     for &view in &opts.views {
         let camera = Camera::framing(&frame_box, view, (n, n))?;

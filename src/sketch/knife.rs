@@ -230,7 +230,6 @@ enum Slot {
 }
 
 impl KnifeTree {
-    /// Builds the tree of a valid region's directed edges (region on their left).
     /// Builds the tree of the pieces `frags` of a valid region's directed `edges`. Where the
     /// pieces are the edges clipped to a box, the tree labels every point of that box right:
     /// a leaf cell's part inside the box holds no boundary and borders the knife piece that
