@@ -56,6 +56,8 @@ pub struct MeshBvh {
     /// Node boxes are relative to this point.
     origin: DVec3,
     depth: usize,
+    /// The box of every triangle (empty when there are none).
+    bbox: Aabb,
 }
 
 #[derive(Clone, Copy)]
@@ -192,6 +194,7 @@ impl MeshBvh {
             ids,
             origin,
             depth: depth_max,
+            bbox,
         }
     }
 
@@ -210,7 +213,7 @@ impl MeshBvh {
     /// The box of every triangle (empty when there are none).
     #[must_use]
     pub fn bounds(&self) -> Aabb {
-        Aabb::from_points(self.corners.iter().flatten())
+        self.bbox
     }
 
     /// The nearest hit with `t` in `(t_min, t_max)`.

@@ -16,10 +16,9 @@
 //! These reaches add up along the path from the root.
 
 use glam::DVec3;
-use smallvec::SmallVec;
 
 use super::Scene;
-use super::eval::{Bound, Instr, Op, combine, combine_bounds, combine_material, map_box};
+use super::eval::{Bound, Instr, Op, combine_bounds, map_box, run_at};
 use super::tree::SmoothKind;
 use crate::geom::Aabb;
 use crate::solid::BoolOp;
@@ -252,33 +251,7 @@ impl Pruned {
 
     #[inline]
     fn run<const MAT: bool>(&self, scene: &Scene, p: DVec3) -> (f64, u32) {
-        let leaves = &scene.program.leaves;
-        let mut stack: SmallVec<[(f64, u32); 16]> = SmallVec::new();
-        for ins in &self.instrs {
-            match *ins {
-                Instr::Leaf(i) => {
-                    let l = &leaves[i as usize];
-                    let q = if l.identity {
-                        p
-                    } else {
-                        l.to_local.transform_point3(p)
-                    };
-                    stack.push((l.shape.distance(q) * l.factor, l.material));
-                }
-                Instr::Empty => stack.push((f64::INFINITY, 0)),
-                Instr::Op(op) => {
-                    let (Some(b), Some(a)) = (stack.pop(), stack.pop()) else {
-                        return (f64::INFINITY, 0);
-                    };
-                    stack.push(if MAT {
-                        combine_material(op, a, b)
-                    } else {
-                        (combine(op, a.0, b.0), 0)
-                    });
-                }
-            }
-        }
-        stack.pop().unwrap_or((f64::INFINITY, 0))
+        run_at::<MAT>(&self.instrs, &scene.program.leaves, p)
     }
 }
 

@@ -242,32 +242,7 @@ impl Program {
     }
 
     fn eval_scalar<const MAT: bool>(&self, p: DVec3) -> (f64, u32) {
-        let mut stack: SmallVec<[(f64, u32); 16]> = SmallVec::new();
-        for ins in &self.instrs {
-            match *ins {
-                Instr::Leaf(i) => {
-                    let l = &self.leaves[i as usize];
-                    let q = if l.identity {
-                        p
-                    } else {
-                        l.to_local.transform_point3(p)
-                    };
-                    stack.push((l.shape.distance(q) * l.factor, l.material));
-                }
-                Instr::Empty => stack.push((f64::INFINITY, 0)),
-                Instr::Op(op) => {
-                    let (Some(b), Some(a)) = (stack.pop(), stack.pop()) else {
-                        return (f64::INFINITY, 0);
-                    };
-                    stack.push(if MAT {
-                        combine_material(op, a, b)
-                    } else {
-                        (combine(op, a.0, b.0), 0)
-                    });
-                }
-            }
-        }
-        stack.pop().unwrap_or((f64::INFINITY, 0))
+        run_at::<MAT>(&self.instrs, &self.leaves, p)
     }
 
     /// Values at many points into `out` (same length).
@@ -541,6 +516,38 @@ fn combine_slices(op: Op, a: &mut [f64], b: &[f64]) {
             .zip(b)
             .for_each(|(x, &y)| *x = combine(op, *x, y)),
     }
+}
+
+/// Runs `instrs` (postfix, over `leaves`) at one point: the value and, with `MAT`, the material
+/// deciding it. Shared by the whole program and by the culler's pruned programs.
+#[inline]
+pub(super) fn run_at<const MAT: bool>(instrs: &[Instr], leaves: &[Leaf], p: DVec3) -> (f64, u32) {
+    let mut stack: SmallVec<[(f64, u32); 16]> = SmallVec::new();
+    for ins in instrs {
+        match *ins {
+            Instr::Leaf(i) => {
+                let l = &leaves[i as usize];
+                let q = if l.identity {
+                    p
+                } else {
+                    l.to_local.transform_point3(p)
+                };
+                stack.push((l.shape.distance(q) * l.factor, l.material));
+            }
+            Instr::Empty => stack.push((f64::INFINITY, 0)),
+            Instr::Op(op) => {
+                let (Some(b), Some(a)) = (stack.pop(), stack.pop()) else {
+                    return (f64::INFINITY, 0);
+                };
+                stack.push(if MAT {
+                    combine_material(op, a, b)
+                } else {
+                    (combine(op, a.0, b.0), 0)
+                });
+            }
+        }
+    }
+    stack.pop().unwrap_or((f64::INFINITY, 0))
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@ enum Subject {
     Field(Box<Scene>),
     Mesh {
         mesh: Mesh,
-        bvh: MeshBvh,
+        bvh: Box<MeshBvh>,
         scene: Option<Box<Scene>>,
     },
 }
@@ -56,7 +56,7 @@ pub(crate) fn render(args: &RenderArgs, progress: &Progress) -> Result<(), Failu
                 };
                 let mesh = scene_mesh(&scene, route, None, None, progress).map_err(named)?;
                 progress.step("building the BVH");
-                let bvh = MeshBvh::build(&mesh);
+                let bvh = Box::new(MeshBvh::build(&mesh));
                 Subject::Mesh {
                     mesh,
                     bvh,
@@ -73,7 +73,7 @@ pub(crate) fn render(args: &RenderArgs, progress: &Progress) -> Result<(), Failu
         }
         let mesh = read_mesh(input)?;
         progress.step("building the BVH");
-        let bvh = MeshBvh::build(&mesh);
+        let bvh = Box::new(MeshBvh::build(&mesh));
         Subject::Mesh {
             mesh,
             bvh,
