@@ -476,3 +476,146 @@ fn box_obj(min: [f64; 3], max: [f64; 3]) -> String {
     }
     s
 }
+
+#[test]
+fn output_names_near_the_name_limit_write() {
+    let dir = Scratch::new("long-name");
+    let input = dir.path("in.obj");
+    fs::write(&input, box_obj([0.0; 3], [1.0; 3])).unwrap();
+    // 251 bytes + ".obj" = 255, the longest name a file system takes: the temporary beside it
+    // must not be longer.
+    let out = dir.path(&format!("{}.obj", "n".repeat(251)));
+    bspcsg([
+        "convert".as_ref(),
+        input.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .ok();
+    assert!(read_mesh(&out).unwrap().triangle_count() == 12);
+    assert_eq!(dir.files().len(), 2, "{:?}", dir.files());
+}
+
+#[test]
+fn an_existing_output_keeps_its_mode_and_a_link_stays_a_link() {
+    use std::os::unix::fs::{FileTypeExt as _, PermissionsExt as _};
+    let dir = Scratch::new("mode-link");
+    let input = dir.path("in.obj");
+    fs::write(&input, box_obj([0.0; 3], [1.0; 3])).unwrap();
+    let convert = |out: &Path| {
+        bspcsg([
+            "convert".as_ref(),
+            input.as_os_str(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ])
+    };
+    // Mode 0600 stays 0600.
+    let private = dir.path("private.obj");
+    fs::write(&private, "old").unwrap();
+    fs::set_permissions(&private, fs::Permissions::from_mode(0o600)).unwrap();
+    convert(&private).ok();
+    let mode = fs::metadata(&private).unwrap().permissions().mode() & 0o777;
+    assert_eq!(mode, 0o600);
+    assert_eq!(read_mesh(&private).unwrap().triangle_count(), 12);
+    // A symbolic link is written through: the link stays, its target gets the content.
+    let target = dir.path("target.obj");
+    fs::write(&target, "old").unwrap();
+    let link = dir.path("link.obj");
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    convert(&link).ok();
+    assert!(
+        fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    assert_eq!(read_mesh(&target).unwrap().triangle_count(), 12);
+    // A character device is written to, never replaced.
+    bspcsg([
+        "convert".as_ref(),
+        input.as_os_str(),
+        "-o".as_ref(),
+        "/dev/null".as_ref(),
+        "--format".as_ref(),
+        "obj".as_ref(),
+    ])
+    .ok();
+    assert!(
+        fs::metadata("/dev/null")
+            .unwrap()
+            .file_type()
+            .is_char_device()
+    );
+    // A FIFO is refused at once (opening it would block until a reader came).
+    let fifo = dir.path("fifo.obj");
+    assert!(
+        std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let t = Instant::now();
+    let run = convert(&fifo).code(1);
+    assert!(run.stderr.contains("not a regular file"), "{}", run.stderr);
+    assert!(t.elapsed() < Duration::from_secs(5));
+    assert!(fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
+}
+
+#[test]
+fn a_signal_during_export_leaves_no_temporary_file_or_directory() {
+    use std::process::{Command, Stdio};
+    let dir = Scratch::new("signal");
+    let scene = dir.path("sphere.json");
+    fs::write(
+        &scene,
+        r#"{"kind":"sdf_primitive","data":{"primitive_type":"sphere","radius":1}}"#,
+    )
+    .unwrap();
+    // A fine sphere: a few hundred thousand triangles, so the write itself takes a while.
+    let mut interrupted = 0;
+    for (k, delay_ms) in [50u64, 150, 300, 500, 800, 1200].into_iter().enumerate() {
+        let out = dir.path(&format!("made{k}/deeper/sphere.obj"));
+        let mut child = Command::new(env!("CARGO_BIN_EXE_bspcsg"))
+            .args([
+                "export".as_ref(),
+                scene.as_os_str(),
+                "--tolerance".as_ref(),
+                "2e-5".as_ref(),
+            ])
+            .args(["-o".as_ref(), out.as_os_str(), "--quiet".as_ref()])
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(delay_ms));
+        let _ = Command::new("kill")
+            .args(["-TERM", &child.id().to_string()])
+            .status();
+        let status = child.wait().unwrap();
+        match status.code() {
+            Some(0) => assert!(out.exists()),
+            Some(143) => {
+                interrupted += 1;
+                assert!(
+                    !dir.path(&format!("made{k}")).exists(),
+                    "made directories are removed"
+                );
+            }
+            other => panic!("exit {other:?}"),
+        }
+        // No hidden temporary or backup file anywhere under the scratch directory.
+        let mut stack = vec![dir.0.clone()];
+        while let Some(d) = stack.pop() {
+            for e in fs::read_dir(&d).unwrap() {
+                let e = e.unwrap();
+                let name = e.file_name().to_string_lossy().into_owned();
+                assert!(!name.starts_with('.'), "{} left in {}", name, d.display());
+                if e.file_type().unwrap().is_dir() {
+                    stack.push(e.path());
+                }
+            }
+        }
+    }
+    assert!(interrupted > 0, "no run was interrupted");
+}

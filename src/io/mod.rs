@@ -6,19 +6,22 @@
 
 use std::fmt;
 use std::fs;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::{Error, MeshDefect, Result};
 use crate::mesh::{FromMeshOptions, Material, Mesh};
 use crate::solid::Solid;
 use crate::topology::check_face_indices;
 
+mod atomic;
 mod gltf;
 mod obj;
 mod stl;
+
+pub use atomic::cleanup_interrupted_writes;
+use atomic::write_atomically;
+pub(crate) use atomic::write_file_atomically;
 
 /// The largest glTF buffer file read, in bytes (2 GiB): beyond any mesh held in memory here,
 /// small enough that a hostile `byteLength` cannot claim the machine's memory.
@@ -298,6 +301,36 @@ pub fn write_mesh_as(
     write_atomically(&outputs)
 }
 
+/// The files beside a mesh file that it refers to: a glTF's buffer and image URIs (decoded as
+/// the reader decodes them; `data:` URIs are no files), an OBJ's `mtllib` names. For callers
+/// that must not overwrite what an input needs (the command line's companion-file check).
+/// Best effort: a file that cannot be read or parsed yields none (reading it says why).
+#[must_use]
+pub fn referenced_files(input: &Path) -> Vec<PathBuf> {
+    let dir = input.parent().unwrap_or(Path::new(""));
+    let Ok(bytes) = fs::read(input) else {
+        return Vec::new();
+    };
+    let mut names = Vec::new();
+    if let Ok(doc) = serde_json::from_slice::<serde_json::Value>(&bytes) {
+        for key in ["buffers", "images"] {
+            for item in doc[key].as_array().into_iter().flatten() {
+                if let Some(uri) = item["uri"].as_str().filter(|u| !u.starts_with("data:")) {
+                    names.push(gltf::percent_decode(uri).unwrap_or_else(|| uri.to_owned()));
+                }
+            }
+        }
+    } else {
+        let text = String::from_utf8_lossy(&bytes);
+        for line in text.lines() {
+            if let Some(rest) = line.trim_start().strip_prefix("mtllib") {
+                names.extend(rest.split_whitespace().map(str::to_owned));
+            }
+        }
+    }
+    names.into_iter().map(|n| dir.join(n)).collect()
+}
+
 /// The bytes a writer produced: the main file and any companions (`.mtl`, `.bin`).
 pub(crate) struct Files {
     pub main: Vec<u8>,
@@ -355,150 +388,6 @@ fn check_mesh(mesh: &Mesh, float32: bool) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// Distinguishes the temporary files of concurrent writes within one process.
-static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
-
-/// A temporary file beside its destination, removed on drop unless renamed into place.
-struct TempFile {
-    tmp: PathBuf,
-    dest: PathBuf,
-    renamed: bool,
-}
-
-impl TempFile {
-    /// Creates the temporary file for `dest` and writes `bytes` to it.
-    fn write(dest: &Path, bytes: &[u8]) -> Result<TempFile> {
-        let io_err = |source| Error::Io {
-            path: dest.to_path_buf(),
-            source,
-        };
-        let name = dest.file_name().ok_or_else(|| {
-            io_err(std::io::Error::new(
-                std::io::ErrorKind::InvalidInput,
-                "the output path does not name a file",
-            ))
-        })?;
-        let dir = match dest.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d,
-            _ => Path::new("."),
-        };
-        let n = TEMP_COUNTER.fetch_add(1, Ordering::Relaxed);
-        let mut tmp_name = std::ffi::OsString::from(".");
-        tmp_name.push(name);
-        tmp_name.push(format!(".{}.{n}.tmp", std::process::id()));
-        let tmp = dir.join(tmp_name);
-        // `create_new` never clobbers a stranger's file that happens to have the same name.
-        let mut file = fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)
-            .map_err(io_err)?;
-        // From here on the guard removes the temporary file if anything fails.
-        let guard = TempFile {
-            tmp,
-            dest: dest.to_path_buf(),
-            renamed: false,
-        };
-        file.write_all(bytes).map_err(io_err)?;
-        // Flushed to disk before the rename, so a crash cannot leave a renamed but empty file.
-        file.sync_all().map_err(io_err)?;
-        Ok(guard)
-    }
-
-    fn rename(&mut self) -> Result<()> {
-        fs::rename(&self.tmp, &self.dest).map_err(|source| Error::Io {
-            path: self.dest.clone(),
-            source,
-        })?;
-        self.renamed = true;
-        Ok(())
-    }
-}
-
-impl Drop for TempFile {
-    fn drop(&mut self) {
-        if !self.renamed {
-            // Nothing more can be done about a failure here; the write already failed.
-            let _ = fs::remove_file(&self.tmp);
-        }
-    }
-}
-
-/// Writes every file to a temporary first and renames them, in order, only once all are
-/// complete. The last file is the main one; each companion replaced before it is kept as a
-/// hidden backup until the main file is in place, and put back if that rename fails, so the
-/// old main file never refers to a new companion.
-fn write_atomically(files: &[OutFile]) -> Result<()> {
-    let mut temps = Vec::with_capacity(files.len());
-    for f in files {
-        temps.push(TempFile::write(&f.path, &f.bytes)?);
-    }
-    let Some((main, companions)) = temps.split_last_mut() else {
-        return Ok(());
-    };
-    let mut backups: Vec<Backup> = Vec::new();
-    let mut created: Vec<PathBuf> = Vec::new();
-    let result = (|| {
-        for t in companions.iter_mut() {
-            match Backup::of(&t.dest)? {
-                Some(b) => backups.push(b),
-                None => created.push(t.dest.clone()),
-            }
-            t.rename()?;
-        }
-        main.rename()
-    })();
-    match result {
-        Ok(()) => {
-            for b in backups {
-                let _ = fs::remove_file(&b.copy);
-            }
-            Ok(())
-        }
-        Err(e) => {
-            // Restore the companions the old main file refers to; drop new ones.
-            for b in backups {
-                let _ = fs::rename(&b.copy, &b.dest);
-            }
-            for c in created {
-                let _ = fs::remove_file(c);
-            }
-            Err(e)
-        }
-    }
-}
-
-/// An existing file kept under a hidden name beside it while it is being replaced.
-struct Backup {
-    dest: PathBuf,
-    copy: PathBuf,
-}
-
-impl Backup {
-    /// A hard link to `dest` (a copy where links are not supported), or `None` when `dest`
-    /// does not exist yet.
-    fn of(dest: &Path) -> Result<Option<Backup>> {
-        if fs::symlink_metadata(dest).is_err() {
-            return Ok(None);
-        }
-        let n = TEMP_COUNTER.fetch_add(1, Ordering::Relaxed);
-        let mut name = std::ffi::OsString::from(".");
-        name.push(dest.file_name().unwrap_or_default());
-        name.push(format!(".{}.{n}.old", std::process::id()));
-        let copy = dest.with_file_name(name);
-        fs::hard_link(dest, &copy)
-            .or_else(|_| fs::copy(dest, &copy).map(|_| ()))
-            .map_err(|source| Error::Io {
-                path: dest.to_path_buf(),
-                source,
-            })?;
-        Ok(Some(Backup {
-            dest: dest.to_path_buf(),
-            copy,
-        }))
-    }
 }
 
 #[cfg(test)]

@@ -89,40 +89,15 @@ impl Rgb8 {
     /// the target is then left as it was.
     pub fn write_png(&self, path: impl AsRef<Path>) -> Result<()> {
         let path = path.as_ref();
-        let io = |source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        };
-        let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
-        let tmp = path.with_file_name(format!(
-            ".{}.{}.tmp",
-            name.unwrap_or_else(|| "image".into()),
-            std::process::id()
-        ));
-        let result = (|| -> Result<()> {
-            let file = std::fs::File::create(&tmp).map_err(io)?;
+        crate::io::write_file_atomically(path, |file| {
             let mut enc = png::Encoder::new(BufWriter::new(file), self.width, self.height);
             enc.set_color(png::ColorType::Rgb);
             enc.set_depth(png::BitDepth::Eight);
             enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-            let png_err = |e: png::EncodingError| {
-                io(std::io::Error::other(format!("PNG encoding failed: {e}")))
-            };
-            let mut w = enc.write_header().map_err(png_err)?;
-            w.write_image_data(&self.data).map_err(png_err)?;
-            w.finish().map_err(png_err)?;
-            Ok(())
-        })();
-        match result {
-            Ok(()) => std::fs::rename(&tmp, path).map_err(|e| {
-                let _ = std::fs::remove_file(&tmp);
-                io(e)
-            }),
-            Err(e) => {
-                let _ = std::fs::remove_file(&tmp);
-                Err(e)
-            }
-        }
+            let mut w = enc.write_header().map_err(png_error)?;
+            w.write_image_data(&self.data).map_err(png_error)?;
+            w.finish().map_err(png_error)
+        })
     }
 
     /// Reads an 8-bit RGB or RGBA PNG (alpha dropped).
@@ -195,6 +170,11 @@ pub(crate) fn encode_srgb(c: f64) -> u8 {
         1.055 * c.powf(1.0 / 2.4) - 0.055
     };
     (s * 255.0).round() as u8
+}
+
+/// A PNG encoding fault as the I/O error the writer reports.
+fn png_error(e: png::EncodingError) -> std::io::Error {
+    std::io::Error::other(format!("PNG encoding failed: {e}"))
 }
 
 #[cfg(test)]

@@ -46,7 +46,27 @@ use cli::{Cli, Command};
 use output::print_stderr;
 use progress::Progress;
 
+/// SIGINT, SIGTERM and SIGHUP are taken by a thread of their own: it removes the temporary
+/// files of a write in progress (putting back a companion already replaced) and the
+/// directories made for the output, then exits 128 + the signal's number (130 for SIGINT, 143
+/// for SIGTERM), as a shell reports a process that a signal ended.
+fn handle_signals() {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
+        return;
+    };
+    std::thread::spawn(move || {
+        if let Some(sig) = signals.forever().next() {
+            bspcsg::cleanup_interrupted_writes();
+            output::remove_made_dirs();
+            print_stderr("bspcsg: interrupted; no output written");
+            std::process::exit(128 + sig);
+        }
+    });
+}
+
 fn main() -> ExitCode {
+    handle_signals();
     let cli = match Cli::try_parse().and_then(Cli::checked) {
         Ok(cli) => cli,
         Err(e) => {

@@ -4,6 +4,7 @@
 
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 use bspcsg::{Format, Material, Mesh, write_mesh_as};
 
@@ -36,6 +37,23 @@ pub(crate) fn output_target(args: &OutputArgs) -> Result<(&Path, Format), Failur
     Ok((out, format))
 }
 
+/// Directories made for an output not yet written, for the signal handler to remove.
+static MADE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Removes the directories made for an output whose write was interrupted, innermost first.
+pub(crate) fn remove_made_dirs() {
+    if let Ok(mut made) = MADE.lock() {
+        remove_dirs(&std::mem::take(&mut *made));
+    }
+}
+
+/// The output is written: its directories stay.
+fn keep_made_dirs() {
+    if let Ok(mut made) = MADE.lock() {
+        made.clear();
+    }
+}
+
 /// Creates the missing directories above `out`, returning those it made, outermost first.
 pub(crate) fn make_parents(out: &Path) -> Result<Vec<PathBuf>, Failure> {
     let mut missing: Vec<PathBuf> = out
@@ -45,9 +63,15 @@ pub(crate) fn make_parents(out: &Path) -> Result<Vec<PathBuf>, Failure> {
         .map(Path::to_path_buf)
         .collect();
     missing.reverse();
-    for (k, d) in missing.iter().enumerate() {
-        if let Err(e) = std::fs::create_dir(d) {
-            remove_dirs(&missing[..k]);
+    for d in &missing {
+        let made = std::fs::create_dir(d);
+        if made.is_ok()
+            && let Ok(mut list) = MADE.lock()
+        {
+            list.push(d.clone());
+        }
+        if let Err(e) = made {
+            remove_made_dirs();
             return Err(Failure::usage_or_io(format!(
                 "{}: cannot create the output's directory: {e}",
                 d.display()
@@ -100,9 +124,11 @@ pub(crate) fn finish(
     // Directories too appear only once the work has succeeded, and go again if the write fails.
     let made = make_parents(out)?;
     if let Err(e) = write_mesh_as(out, mesh, materials, format) {
-        remove_dirs(&made);
+        remove_made_dirs();
         return Err(e.into());
     }
+    keep_made_dirs();
+    drop(made);
     progress.finish();
     if mesh.is_empty() {
         print_stderr(&format!(
@@ -169,7 +195,7 @@ pub(crate) fn protect_inputs(
     }
     for input in inputs {
         let mut needed = vec![input.to_path_buf()];
-        needed.extend(referenced_files(input));
+        needed.extend(bspcsg::referenced_files(input));
         if let Some(hit) = needed.iter().find(|p| same_file(&companion, p)) {
             return Err(Failure::usage_or_io(format!(
                 "{}: cannot write the output: its companion {} would replace {}, which the \
@@ -191,54 +217,4 @@ fn same_file(a: &Path, b: &Path) -> bool {
         (Ok(x), Ok(y)) => x.dev() == y.dev() && x.ino() == y.ino(),
         _ => false,
     }
-}
-
-/// The files beside `input` that it refers to: a glTF's buffer and image URIs, an OBJ's
-/// `mtllib` names. Best effort: an unreadable input yields none (reading it reports that).
-fn referenced_files(input: &Path) -> Vec<PathBuf> {
-    let dir = input.parent().unwrap_or(Path::new(""));
-    let Ok(bytes) = std::fs::read(input) else {
-        return Vec::new();
-    };
-    let mut names = Vec::new();
-    if let Ok(doc) = serde_json::from_slice::<serde_json::Value>(&bytes) {
-        for key in ["buffers", "images"] {
-            for item in doc[key].as_array().into_iter().flatten() {
-                if let Some(uri) = item["uri"].as_str().filter(|u| !u.starts_with("data:")) {
-                    names.push(percent_decoded(uri));
-                }
-            }
-        }
-    } else {
-        let text = String::from_utf8_lossy(&bytes);
-        for line in text.lines() {
-            if let Some(rest) = line.trim_start().strip_prefix("mtllib") {
-                names.extend(rest.split_whitespace().map(str::to_owned));
-            }
-        }
-    }
-    names.into_iter().map(|n| dir.join(n)).collect()
-}
-
-/// `%XX` escapes decoded where well formed; others kept as written.
-fn percent_decoded(uri: &str) -> String {
-    let b = uri.as_bytes();
-    let mut out = Vec::with_capacity(b.len());
-    let mut k = 0;
-    while k < b.len() {
-        let hex = b
-            .get(k + 1..k + 3)
-            .and_then(|h| std::str::from_utf8(h).ok());
-        match (b[k], hex.and_then(|h| u8::from_str_radix(h, 16).ok())) {
-            (b'%', Some(v)) => {
-                out.push(v);
-                k += 3;
-            }
-            (c, _) => {
-                out.push(c);
-                k += 1;
-            }
-        }
-    }
-    String::from_utf8_lossy(&out).into_owned()
 }

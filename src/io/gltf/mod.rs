@@ -18,4 +18,5 @@ mod uri;
 mod write;
 
 pub(crate) use scene::read;
+pub(crate) use uri::percent_decode;
 pub(crate) use write::write;
