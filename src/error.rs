@@ -221,6 +221,15 @@ pub enum MeshDefect {
         /// The largest coordinate magnitude.
         reach: f64,
     },
+    /// Closed, but triangles cross each other: overlapping shells, or a shell through itself.
+    /// It bounds no solid (its volume counts the overlap twice). Remedy: union the shells in
+    /// the program that made it, or combine them as separate inputs.
+    SelfIntersecting {
+        /// Pairs of triangles that cross.
+        pairs: usize,
+        /// The first pair.
+        first: [usize; 2],
+    },
     /// A face whose boundary crosses itself, so it cannot be triangulated.
     SelfIntersectingFace {
         /// The face.
@@ -315,6 +324,13 @@ impl fmt::Display for MeshDefect {
                 "faces that repeat a vertex index: {faces} (first: face {first_face} = {indices:?})"
             ),
             MeshDefect::ZeroAreaFace { face } => write!(f, "face {face} has no area"),
+            MeshDefect::SelfIntersecting { pairs, first } => write!(
+                f,
+                "self-intersecting: {pairs} pairs of triangles cross (first: triangles {} and \
+                 {}); overlapping shells bound no solid: unite them first, or give them as \
+                 separate inputs",
+                first[0], first[1]
+            ),
             MeshDefect::AllZeroArea { triangles, reach } => write!(
                 f,
                 "all {triangles} triangles have zero area within the rounding of their \

@@ -67,6 +67,17 @@
 //! operand does not blur a small one, because only the region they share counts. A solid made
 //! by a boolean carries its `eps`, and later booleans never use a smaller one.
 //!
+//! # Precision
+//!
+//! Far from the origin the floor `2⁻⁴³ × m` can dwarf `10⁻¹² × d`. A boolean whose tolerance
+//! (from the floor, or carried from an earlier, larger boolean) exceeds
+//! [`Tolerance::PRECISION_LIMIT`] (10⁻⁵) of the region where its operands meet cannot promise
+//! its answer: it marks its result, the mark passes to every solid made from it, and
+//! [`Solid::check_precision`] turns it into [`Error::BeyondPrecision`] (the command line exits
+//! 2, [`Scene::to_solid`] fails). Within the limit the surface is within a few `eps` of the
+//! exact one, so a unit part is exact up to about 10⁷ from the origin and refused from about
+//! 10⁹ on; a part 10³ across, up to about 10¹⁰.
+//!
 //! # Input range
 //!
 //! Coordinates must be finite and at most [`MAX_COORDINATE`] (10¹⁰⁰) in magnitude; primitive
@@ -112,7 +123,8 @@ pub use polygon::{Polygon, Split};
 pub use primitives::{MAX_POLYGONS, MAX_SEGMENTS, MIN_SEGMENTS, segments_for_tolerance};
 pub use sdf::{
     BakeOptions, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL, MAX_POLYGON_POINTS,
-    MAX_REFINE_STEPS, MAX_SCENE_MAGNITUDE, RenderProfile, Scene, SceneCamera, TessellationOptions,
+    MAX_REFINE_STEPS, MAX_SCENE_MAGNITUDE, MAX_SCENE_POLYGONS, RenderProfile, Scene, SceneCamera,
+    TessellationOptions,
 };
 pub use sketch::{ExtrudeOptions, FillRule, Region, Sketch, SketchReport, TWIST_DEGREES_PER_SLICE};
 pub use solid::{

@@ -406,18 +406,18 @@ fn welder_hash_flooding_costs_no_more_than_random_positions() {
     let (c, r) = (dir.path("crafted.obj"), dir.path("random.obj"));
     fs::write(&c, points_obj(&crafted)).unwrap();
     fs::write(&r, points_obj(&random)).unwrap();
-    let best = |p: &Path| {
-        (0..5)
-            .map(|_| {
-                let t = Instant::now();
-                let m = read_mesh(p).unwrap();
-                assert_eq!(m.positions.len(), N / 3 * 3);
-                t.elapsed()
-            })
-            .min()
-            .unwrap()
+    // Interleaved, best of 9 each: other tests share the machine.
+    let time = |p: &Path| {
+        let t = Instant::now();
+        let m = read_mesh(p).unwrap();
+        assert_eq!(m.positions.len(), N / 3 * 3);
+        t.elapsed()
     };
-    let (tc, tr) = (best(&c), best(&r));
+    let (mut tc, mut tr) = (Duration::MAX, Duration::MAX);
+    for _ in 0..9 {
+        tc = tc.min(time(&c));
+        tr = tr.min(time(&r));
+    }
     assert!(tc <= 3 * tr, "crafted {tc:?} vs random {tr:?}");
 }
 
@@ -618,4 +618,165 @@ fn a_signal_during_export_leaves_no_temporary_file_or_directory() {
         }
     }
     assert!(interrupted > 0, "no run was interrupted");
+}
+
+#[test]
+fn overlapping_shells_are_refused_as_an_operand_and_reported_by_info() {
+    let dir = Scratch::new("overlapping-shells");
+    // Two unit cubes in one file, the second moved by (0.5, 0.25, 0.25): closed and manifold,
+    // volume 2, but the solid they bound is 1.5.
+    let two = format!(
+        "{}{}",
+        box_obj([0.0; 3], [1.0; 3]),
+        box_obj([0.5, 0.25, 0.25], [1.5, 1.25, 1.25])
+            .lines()
+            .map(|l| match l.strip_prefix("f ") {
+                Some(f) => {
+                    let idx: Vec<String> = f
+                        .split_whitespace()
+                        .map(|i| (i.parse::<u32>().unwrap() + 8).to_string())
+                        .collect();
+                    format!("f {}\n", idx.join(" "))
+                }
+                None => format!("{l}\n"),
+            })
+            .collect::<String>()
+    );
+    let shells = dir.path("shells.obj");
+    fs::write(&shells, two).unwrap();
+    let other = dir.path("other.obj");
+    fs::write(&other, box_obj([0.25, 0.25, -0.5], [1.25, 1.25, 0.5])).unwrap();
+    let out = dir.path("out.obj");
+    let run = bspcsg([
+        "union".as_ref(),
+        shells.as_os_str(),
+        other.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(2);
+    assert!(run.stderr.contains("self-intersecting"), "{}", run.stderr);
+    assert!(run.stderr.contains("shells.obj"), "{}", run.stderr);
+    assert!(!out.exists());
+    let info = bspcsg(["info".as_ref(), shells.as_os_str()]).ok();
+    assert!(
+        info.stdout.contains("bounds a solid                  no"),
+        "{}",
+        info.stdout
+    );
+    let pairs = read_mesh(&shells).unwrap().crossing_triangle_pairs();
+    assert!(!pairs.is_empty());
+    // Each cube alone, and the two touching along a face, are solids.
+    assert!(
+        read_mesh(&other)
+            .unwrap()
+            .crossing_triangle_pairs()
+            .is_empty()
+    );
+    let err = bspcsg::read_solid(&shells, &bspcsg::FromMeshOptions::default()).unwrap_err();
+    assert!(
+        err.to_string().contains(&format!("{} pairs", pairs.len())),
+        "{err}"
+    );
+}
+
+#[test]
+fn scene_exports_over_the_polygon_budget_are_refused_with_a_tolerance_that_fits() {
+    let dir = Scratch::new("scene-budget");
+    let scene = dir.path("four.json");
+    let sphere = |p: [f64; 3]| {
+        format!(
+            r#"{{"kind":"sdf_primitive","pos":[{},{},{}],"data":{{"primitive_type":"sphere","radius":1}}}}"#,
+            p[0], p[1], p[2]
+        )
+    };
+    fs::write(
+        &scene,
+        format!(
+            r#"{{"op":"union","children":[{},{},{},{}]}}"#,
+            sphere([0.0; 3]),
+            sphere([0.5, 0.0, 0.0]),
+            sphere([0.0, 0.5, 0.0]),
+            sphere([0.0, 0.0, 0.5])
+        ),
+    )
+    .unwrap();
+    let out = dir.path("four.obj");
+    let t = Instant::now();
+    let run = bspcsg([
+        "export".as_ref(),
+        scene.as_os_str(),
+        "--tolerance".as_ref(),
+        "1e-6".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(1);
+    assert!(
+        t.elapsed() < Duration::from_secs(5),
+        "refused before any work"
+    );
+    assert!(run.stderr.contains("four.json"), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("polygon budget of a scene"),
+        "{}",
+        run.stderr
+    );
+    // The message names a tolerance; the library refuses the same way.
+    let s = bspcsg::Scene::from_path(&scene).unwrap();
+    let err = s
+        .to_solid(&bspcsg::TessellationOptions::with_tolerance(1e-6))
+        .unwrap_err();
+    let enough: f64 = err
+        .to_string()
+        .split("at least ")
+        .nth(1)
+        .and_then(|r| r.split(',').next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(enough > 1e-6 && enough < 1e-5, "{enough}");
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_byte_order_mark_is_skipped_in_obj_and_scene_files() {
+    let dir = Scratch::new("bom");
+    let obj = dir.path("bom.obj");
+    fs::write(&obj, format!("\u{feff}{}", box_obj([0.0; 3], [1.0; 3]))).unwrap();
+    let m = read_mesh(&obj).unwrap();
+    let report = m.report();
+    assert_eq!(m.positions.len(), 8);
+    assert!(report.is_closed_manifold(), "{report}");
+    assert!((report.volume - 1.0).abs() < 1e-12);
+    let scene = dir.path("bom.json");
+    fs::write(
+        &scene,
+        "\u{feff}{\"kind\":\"sdf_primitive\",\"data\":{\"primitive_type\":\"box\",\"size\":[1,2,3]}}",
+    )
+    .unwrap();
+    let s = bspcsg::Scene::from_path(&scene).unwrap();
+    assert!(s.distance(bspcsg::glam::DVec3::ZERO) < 0.0);
+}
+
+#[test]
+fn a_repeated_json_key_is_refused_naming_its_path() {
+    let dir = Scratch::new("dup-key");
+    let scene = dir.path("dup.json");
+    fs::write(
+        &scene,
+        r#"{"kind":"sdf_primitive","data":{"primitive_type":"sphere","radius":1,"radius":5}}"#,
+    )
+    .unwrap();
+    let out = dir.path("dup.obj");
+    let run = bspcsg([
+        "export".as_ref(),
+        scene.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(1);
+    assert!(run.stderr.contains("dup.json"), "{}", run.stderr);
+    assert!(run.stderr.contains("$.data.radius"), "{}", run.stderr);
+    assert!(run.stderr.contains("duplicate key"), "{}", run.stderr);
 }

@@ -114,6 +114,9 @@ impl Parsed {
         };
         // Positive indices past the vertices read so far: allowed if the file defines them later.
         let mut forward: Vec<(usize, i64)> = Vec::new();
+        // A UTF-8 byte-order mark (some Windows editors write one) is no part of the first
+        // line: left in, it hid the first `v` and shifted every index after it.
+        let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
         for (n, raw) in bytes.split(|&b| b == b'\n').enumerate() {
             let line_no = n + 1;
             let err = |message: String| parse_error(path, Some(line_no), message);

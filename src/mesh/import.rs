@@ -92,6 +92,17 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
             }));
         }
     }
+    if options.require_closed {
+        // Closed and outward, but two shells (or two parts of one) may still cross: such a
+        // mesh bounds no solid (its volume counts the overlap twice) and misleads the BSP.
+        let crossing = super::self_intersect::crossing_pairs(&mesh.positions, &mesh.triangles);
+        if let Some(&(t, u)) = crossing.first() {
+            return Err(Error::mesh(MeshDefect::SelfIntersecting {
+                pairs: crossing.len(),
+                first: [t as usize, u as usize],
+            }));
+        }
+    }
     // One polygon per triangle of non-zero area. Repeated indices were refused or have
     // zero area, so Polygon::new only fails where Newell's method finds no plane at all.
     let triangles: Vec<Option<Polygon>> = mesh

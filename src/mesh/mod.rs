@@ -140,6 +140,19 @@ impl Mesh {
         })
     }
 
+    /// The pairs of triangles whose interiors cross (indices, smaller first, sorted): empty for
+    /// the surface of a solid; overlapping shells, or a shell through itself, give some. Exact
+    /// (orientation predicates on the coordinates as stored); triangles that share a vertex or
+    /// only touch (along an edge, at a point, in a common plane) do not count.
+    /// [`crate::Solid::from_mesh`] refuses a closed mesh that has any.
+    #[must_use]
+    pub fn crossing_triangle_pairs(&self) -> Vec<[u32; 2]> {
+        self_intersect::crossing_pairs(&self.positions, &self.triangles)
+            .into_iter()
+            .map(|(t, u)| [t, u])
+            .collect()
+    }
+
     /// The bounding box of the vertices used by triangles.
     #[must_use]
     pub fn bbox(&self) -> Aabb {
@@ -180,6 +193,7 @@ pub(crate) mod import;
 pub(crate) mod needles;
 pub(crate) mod repair;
 pub(crate) mod report;
+pub(crate) mod self_intersect;
 pub(crate) mod weld;
 
 pub use import::FromMeshOptions;

@@ -72,6 +72,7 @@ impl Scene {
             cell,
             world,
         };
+        ctx.check_budget(self.root)?;
         let solid = ctx.solid(self.root)?;
         solid.check_precision()?;
         Ok(solid)
@@ -85,7 +86,76 @@ struct Ctx<'a> {
     world: Aabb,
 }
 
+/// The most polygons the BSP route tessellates for a whole scene: as many as one primitive may
+/// have ([`crate::MAX_POLYGONS`], about 800 MB of polygons). The booleans that combine them
+/// need several times the memory of their operands, so a scene of several primitives each just
+/// under the per-primitive limit (four unit spheres at a tolerance of 10⁻⁶) would otherwise run
+/// out of memory.
+pub const MAX_SCENE_POLYGONS: u64 = crate::primitives::MAX_POLYGONS;
+
 impl Ctx<'_> {
+    /// Refuses a scene whose round primitives would need more than [`MAX_SCENE_POLYGONS`]
+    /// polygons in all at this tolerance, before any is made; the message says what tolerance
+    /// would do. Each primitive's count is estimated from its segment counts (the same the
+    /// tessellation uses); smooth subtrees baked by marching cubes are bounded by their own
+    /// grid budget.
+    fn check_budget(&self, root: NodeId) -> Result<()> {
+        let tree = &self.scene.tree;
+        let mut total: u64 = 0;
+        let mut work = vec![(root, Frame::WORLD)];
+        while let Some((id, parent)) = work.pop() {
+            let node = tree.node(id);
+            match &node.kind {
+                NodeKind::Op {
+                    smooth: None,
+                    children,
+                    ..
+                } => {
+                    let frame = parent.child(&node.transform);
+                    work.extend(children.iter().map(|&c| (c, frame)));
+                }
+                NodeKind::Op { .. } => {}
+                NodeKind::Leaf { shape, .. } => {
+                    let frame = parent.child(&node.transform);
+                    total = total.saturating_add(self.estimate(shape, &frame)?);
+                }
+            }
+        }
+        if total > MAX_SCENE_POLYGONS {
+            // Round surfaces need segments ∝ 1/√tolerance on each of two axes.
+            let enough = self.tol * total as f64 / MAX_SCENE_POLYGONS as f64;
+            return Err(Error::param(
+                "tolerance",
+                self.tol,
+                format!(
+                    "the scene's primitives would need about {total} polygons in all, more than \
+                     the {MAX_SCENE_POLYGONS}-polygon budget of a scene; use a tolerance of at \
+                     least {enough:.2e}, or fewer round primitives"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// About how many polygons the tessellation of `shape` has (exact for round primitives).
+    fn estimate(&self, shape: &Shape, frame: &Frame) -> Result<u64> {
+        let n = |r: f64| self.segments(r, frame).map(u64::from);
+        Ok(match shape {
+            Shape::Sphere { radius } => {
+                let s = n(*radius)?;
+                s * (s / 2).max(2)
+            }
+            Shape::Cylinder { radius, .. } => n(*radius)? + 2,
+            Shape::Cone {
+                r_bottom, r_top, ..
+            } => n(r_bottom.max(*r_top))? + 2,
+            Shape::Torus { major, minor } => n(major + minor)? * n(*minor)?,
+            // Profiles: their own point budget bounds them; the turn multiplies.
+            Shape::Revolve { .. } | Shape::Extrude(_) => 0,
+            Shape::Box { .. } | Shape::Pyramid { .. } | Shape::Plane { .. } => 6,
+        })
+    }
+
     fn solid(&self, root: NodeId) -> Result<Solid> {
         enum Work {
             Visit(NodeId, Frame),

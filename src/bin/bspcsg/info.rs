@@ -17,6 +17,7 @@ pub(crate) fn info(args: &InfoArgs, progress: &Progress) -> Result<(), Failure> 
     let report = mesh.report();
     let area = mesh.area();
     let bbox = mesh.bbox();
+    let crossing = mesh.crossing_triangle_pairs().len();
     progress.finish();
     let watertight = watertight(&report);
     let text = if args.json {
@@ -32,6 +33,7 @@ pub(crate) fn info(args: &InfoArgs, progress: &Progress) -> Result<(), Failure> 
             "nonmanifold_edges": report.non_manifold_edges,
             "degenerate_triangles": report.degenerate_triangles,
             "needles": report.needles,
+            "crossing_triangle_pairs": crossing,
             "components": report.shells.len(),
             "genus": report.genus,
         });
@@ -69,6 +71,7 @@ pub(crate) fn info(args: &InfoArgs, progress: &Progress) -> Result<(), Failure> 
             report.degenerate_triangles.to_string(),
         );
         line("needles", report.needles.to_string());
+        line("crossing triangle pairs", crossing.to_string());
         line("components", report.shells.len().to_string());
         line("inside-out shells", report.inverted_shells.to_string());
         line(
@@ -78,6 +81,11 @@ pub(crate) fn info(args: &InfoArgs, progress: &Progress) -> Result<(), Failure> 
                 .map_or_else(|| "undefined".to_owned(), |g| g.to_string()),
         );
         line("closed 2-manifold", yes(report.is_closed_manifold()).into());
+        // Closed and manifold is not yet a solid: shells that cross count space twice.
+        line(
+            "bounds a solid",
+            yes(report.is_closed_manifold() && report.inverted_shells == 0 && crossing == 0).into(),
+        );
         s
     };
     print_stdout(&text)

@@ -6,6 +6,7 @@
 //! own recursion bounded) and then walked here with an explicit work stack.
 
 mod colour;
+mod duplicates;
 mod json;
 mod ops;
 mod parser;
@@ -73,14 +74,17 @@ impl Scene {
     ///
     /// # Errors
     ///
-    /// [`Error::Scene`] naming the JSON path of the first fault: invalid JSON, an unknown or
-    /// missing field, a value out of range, an unknown material or 2D shape.
+    /// [`Error::Scene`] naming the JSON path of the first fault: invalid JSON, a key repeated
+    /// in one object, an unknown or missing field, a value out of range, an unknown material or 2D shape.
     pub fn from_json_str(json: &str) -> Result<Scene> {
-        let value: Value = serde_json::from_str(json).map_err(|e| Error::Scene {
-            file: None,
-            json_path: "$".into(),
-            message: format!("not valid JSON: {e}"),
-        })?;
+        // A byte-order mark (some Windows editors write one) is no part of the document.
+        let json = json.strip_prefix('\u{feff}').unwrap_or(json);
+        let value: Value =
+            duplicates::parse(json).map_err(|(json_path, message)| Error::Scene {
+                file: None,
+                json_path,
+                message,
+            })?;
         Scene::from_json_value(&value)
     }
 
