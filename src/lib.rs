@@ -75,8 +75,8 @@
 //! its answer: it marks its result, the mark passes to every solid made from it, and
 //! [`Solid::check_precision`] turns it into [`Error::BeyondPrecision`] (the command line exits
 //! 2, [`Scene::to_solid`] fails). Within the limit the surface is within a few `eps` of the
-//! exact one, so a unit part is exact up to about 10⁷ from the origin and refused from about
-//! 10⁹ on; a part 10³ across, up to about 10¹⁰.
+//! exact one, so a unit part is exact up to about 10⁸ from the origin and refused from about
+//! 10⁹ on; a part 10³ across, up to about 10¹¹.
 //!
 //! # Input range
 //!
