@@ -173,12 +173,14 @@ fn info_json_keys_and_values() {
         "nonmanifold_edges",
         "degenerate_triangles",
         "needles",
+        "crossing_triangle_pairs",
         "components",
         "genus",
     ];
     expected.sort_unstable();
     assert_eq!(keys, expected);
     assert_eq!(v["needles"], 0, "{v}");
+    assert_eq!(v["crossing_triangle_pairs"], 0, "{v}");
     assert!((num(&v, "volume") - 1.5).abs() < 1e-9, "{v}");
     assert!((num(&v, "area") - 8.0).abs() < 1e-9, "{v}");
     assert_eq!(v["bbox_min"], serde_json::json!([-0.5, -0.5, -0.5]));

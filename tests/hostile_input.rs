@@ -780,3 +780,53 @@ fn a_repeated_json_key_is_refused_naming_its_path() {
     assert!(run.stderr.contains("$.data.radius"), "{}", run.stderr);
     assert!(run.stderr.contains("duplicate key"), "{}", run.stderr);
 }
+
+#[test]
+fn small_messages_empty_results_tiny_cubes_and_unbounded_scenes() {
+    let dir = Scratch::new("small-messages");
+    // An empty result is written with a warning and reads back as the empty mesh.
+    let (a, b) = (dir.path("a.obj"), dir.path("b.obj"));
+    fs::write(&a, box_obj([0.0; 3], [1.0; 3])).unwrap();
+    fs::write(&b, box_obj([5.0; 3], [6.0; 3])).unwrap();
+    let out = dir.path("empty.obj");
+    let run = bspcsg([
+        "intersection".as_ref(),
+        a.as_os_str(),
+        b.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .ok();
+    assert!(run.stderr.contains("the result is empty"), "{}", run.stderr);
+    let info = bspcsg(["info".as_ref(), out.as_os_str(), "--json".as_ref()]).ok();
+    assert!(info.stdout.contains("\"triangles\": 0"), "{}", info.stdout);
+    // A correctly wound cube of side 1e-110 (volume 1e-330, below the least double) is not
+    // inside out.
+    let tiny = dir.path("tiny.obj");
+    fs::write(&tiny, box_obj([0.0; 3], [1e-110; 3])).unwrap();
+    let report = read_mesh(&tiny).unwrap().report();
+    assert_eq!(report.inverted_shells, 0, "{report}");
+    assert!(report.shells[0].volume > 0.0, "{report}");
+    // A plane-only scene by marching cubes: named, and told what to do in the scene.
+    let plane = dir.path("plane.json");
+    fs::write(
+        &plane,
+        r#"{"kind":"sdf_primitive","data":{"primitive_type":"plane","normal":[0,1,0],"offset":0}}"#,
+    )
+    .unwrap();
+    let run = bspcsg([
+        "export".as_ref(),
+        plane.as_os_str(),
+        "--via".as_ref(),
+        "sdf".as_ref(),
+        "-o".as_ref(),
+        dir.path("plane.obj").as_os_str(),
+    ])
+    .code(1);
+    assert!(run.stderr.contains("plane.json"), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("intersect the half-space"),
+        "{}",
+        run.stderr
+    );
+}

@@ -71,8 +71,44 @@ pub(super) fn shells(
         s.genus = (s.closed && s.oriented && twice_genus >= 0 && twice_genus % 2 == 0)
             .then_some(twice_genus as u64 / 2);
     }
+    resolve_underflow(mesh, usable, &shell_of, &boxes, &mut out);
     find_cavities(mesh, usable, &shell_of, &boxes, &mut out, centre);
     out
+}
+
+/// Gives a shell whose volume underflowed to zero (a cube of side 10⁻¹¹⁰: 10⁻³³⁰ is below the
+/// least positive double) the sign of its volume, as the least double of that sign, so a
+/// correctly wound tiny shell is not called flat or inside out. The sign comes from the volume
+/// recomputed about the shell's own centre with coordinates scaled by a power of two (exact).
+fn resolve_underflow(
+    mesh: &Mesh,
+    usable: &[bool],
+    shell_of: &[usize],
+    boxes: &[Aabb],
+    out: &mut [ShellReport],
+) {
+    let tiny: Vec<usize> = (0..out.len())
+        .filter(|&s| out[s].volume == 0.0 && boxes[s].diagonal() > 0.0)
+        .collect();
+    if tiny.is_empty() {
+        return;
+    }
+    let mut scaled = vec![0.0; out.len()];
+    for t in (0..mesh.triangles.len()).filter(|&t| usable[t]) {
+        let s = shell_of[t];
+        if !tiny.contains(&s) {
+            continue;
+        }
+        let c = boxes[s].center();
+        let k = crate::geom::unit_scale(0.5 * boxes[s].diagonal());
+        let [a, b, d] = mesh.triangles[t].map(|i| (mesh.positions[i as usize] - c) * k);
+        scaled[s] += a.dot(b.cross(d));
+    }
+    for s in tiny {
+        if scaled[s] != 0.0 {
+            out[s].volume = f64::from_bits(1).copysign(scaled[s]);
+        }
+    }
 }
 
 /// Edges per shell. An edge of several shells counts in each; each shell must use it exactly

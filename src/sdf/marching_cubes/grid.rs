@@ -88,7 +88,8 @@ fn region(solid_box: &Aabb, opts: &BakeOptions) -> Result<Option<(Aabb, bool)>> 
                 return Err(Error::Unbounded {
                     what: "the scene",
                     why: "a half-space not intersected with a bounded shape",
-                    remedy: "give BakeOptions::region",
+                    remedy: "it has no solid to mesh; intersect the half-space with a bounded \
+                             shape (or, in the library, give BakeOptions::region)",
                 });
             }
             Ok(Some((*solid_box, true)))
