@@ -186,3 +186,28 @@ fn mesh_volume_off_the_solid_at_the_third_step() {
         false,
     );
 }
+
+/// Found by a 10-minute run of the `scenes` target: I-beam variants whose bake at resolution
+/// 12 leaves four needles in a second shell of twelve triangles: a rod 1.2e-6 across and 0.6
+/// long (volume 4.3e-13) along a row of grid vertices where the field is a hair below zero.
+/// Its end caps (area 3.59999999995e-13 against a threshold of 3.6e-13 of its 0.6 diagonal)
+/// cannot collapse without changing the rod's topology. Open.
+#[test]
+#[ignore = "open: a rod-shaped speck shell from marching cubes keeps needle caps"]
+fn bakes_of_i_beam_variants() {
+    for i in 1..=3 {
+        let path = format!(
+            "{}/tests/fuzz_findings/bake_{i}.json",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let scene = bspcsg::Scene::from_json_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let mesh = scene
+            .bake(&bspcsg::BakeOptions::with_resolution(12))
+            .unwrap();
+        let report = mesh.report();
+        assert!(
+            report.is_closed_manifold() && report.needles == 0,
+            "bake_{i}: {report}"
+        );
+    }
+}
