@@ -17,10 +17,9 @@ fn replay_with(data: &[u8], tiny: bool) {
 
 /// Found by the one-minute `booleans` run with libFuzzer seed 1 and tiny rotations off
 /// (`BSPCSG_FUZZ_NO_TINY=1 FUZZ_SEED=1`), at execution 4,357: step 3 leaves one non-manifold
-/// edge and two non-manifold vertices (volume 0.711). Open (see the closing note of issue 11);
-/// it is why CI replays the `booleans` seeds instead of mutating them.
+/// edge and two non-manifold vertices (volume 0.711): a face pairing around a crowded edge that
+/// left both sheets on one pair of vertices (see `mesh/repair/shells.rs`).
 #[test]
-#[ignore = "open: a non-manifold edge at step 3"]
 fn non_manifold_edge_found_by_the_seed_1_minute() {
     replay_with(
         &[
@@ -68,9 +67,9 @@ fn a_needle_that_no_flip_or_collapse_removes() {
 }
 
 /// Found by a 10-minute run of the `booleans` target (artifact crash-aa790cba…); fails the same
-/// way without tiny rotations: a non-manifold edge. Open (see the closing note of issue 11).
+/// way without tiny rotations: a non-manifold edge, split since `to_mesh` pairs the faces
+/// around a crowded edge so that its vertices part.
 #[test]
-#[ignore = "open: a non-manifold edge"]
 fn a_non_manifold_edge_without_tiny_turns() {
     replay(&[
         0xc0, 0xd3, 0x51, 0x68, 0x6f, 0x6e, 0x45, 0x77, 0xb1, 0x5c, 0xa1, 0xa1, 0x63, 0x6f, 0x63,
@@ -82,9 +81,9 @@ fn a_non_manifold_edge_without_tiny_turns() {
 }
 
 /// Found by a 10-minute run of the `booleans` target (artifact crash-696daaaf…); fails the same
-/// way without tiny rotations: a closed shell of non-positive volume. Open (see the closing note of issue 11).
+/// way without tiny rotations: a closed shell of non-positive volume. Closed by the BSP's cell
+/// planes leaving a polygon whole on each side (no cascade of slivers thinner than the weld).
 #[test]
-#[ignore = "open: a closed shell of non-positive volume"]
 fn a_flat_shell_without_tiny_turns() {
     replay(&[
         0x44, 0xfe, 0xb3, 0x14, 0x20, 0x8e, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x15,
@@ -95,28 +94,43 @@ fn a_flat_shell_without_tiny_turns() {
     ]);
 }
 
-/// Found by a 10-minute run of the `scenes` target: variations of the example bracket whose BSP
-/// route (tolerance 1/20, cell 1/12 of the diagonal) gives a flat inverted shell
-/// (`scene_1`, `scene_2`, `scene_4`, `scene_5`) or keeps a needle (`scene_3`). Open (see the
-/// closing note of issue 11).
+/// The BSP route of a scene document (`tests/fuzz_findings/scene_<i>.json`) at the coarse
+/// settings of the `scenes` target: tolerance 1/20, cell 1/12 of the diagonal.
+fn coarse_bsp_report(i: u32) -> bspcsg::MeshReport {
+    let path = format!(
+        "{}/tests/fuzz_findings/scene_{i}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let scene = bspcsg::Scene::from_json_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let d = scene.bbox().diagonal();
+    let coarse = bspcsg::TessellationOptions {
+        tolerance: Some(d / 20.0),
+        cell: Some(d / 12.0),
+    };
+    scene.to_solid(&coarse).unwrap().to_mesh().report()
+}
+
+/// Found by a 10-minute run of the `scenes` target: variations of the example bracket whose
+/// coarse BSP route gave a flat inverted shell. Closed since the BSP's cell planes leave a
+/// polygon whole on each side.
 #[test]
-#[ignore = "open: the BSP route of coarse bracket variants leaves a flat shell or a needle"]
 fn scenes_bsp_route_of_coarse_brackets() {
-    for i in 1..=5 {
-        let path = format!(
-            "{}/tests/fuzz_findings/scene_{i}.json",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        let scene = bspcsg::Scene::from_json_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
-        let d = scene.bbox().diagonal();
-        let coarse = bspcsg::TessellationOptions {
-            tolerance: Some(d / 20.0),
-            cell: Some(d / 12.0),
-        };
-        let report = scene.to_solid(&coarse).unwrap().to_mesh().report();
+    for i in [1, 2, 4, 5] {
+        let report = coarse_bsp_report(i);
         assert!(
             report.is_closed_manifold() && report.needles == 0,
             "scene_{i}: {report}"
         );
     }
+}
+
+/// From the same run: a bracket variant whose coarse BSP route keeps a needle. Open.
+#[test]
+#[ignore = "open: the BSP route of a coarse bracket variant keeps a needle"]
+fn scene_bsp_route_keeps_a_needle() {
+    let report = coarse_bsp_report(3);
+    assert!(
+        report.is_closed_manifold() && report.needles == 0,
+        "scene_3: {report}"
+    );
 }

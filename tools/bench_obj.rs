@@ -4,9 +4,10 @@
 //! usage: cargo run --release --example bench_obj -- union|intersection|difference A.obj B.obj
 //!        [C.obj ...] [--runs N]
 //!
-//! Prints one JSON line: op, input and output triangles, and the median and minimum over the
-//! runs (after one warm-up) of the boolean alone and of the boolean plus `to_mesh` (manifold3d's
-//! result is already a mesh).
+//! Prints one JSON line: op, input and output triangles, the output's volume and whether it is
+//! a closed 2-manifold, the median and minimum over the runs (after one warm-up) of the boolean
+//! alone and of the boolean plus `to_mesh` (manifold3d's result is already a mesh), and every
+//! run's times (`tools/speed_table.sh` pools them across rounds).
 
 use std::time::Instant;
 
@@ -45,19 +46,26 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         out
     };
     let (mut boolean_ms, mut total_ms) = (Vec::new(), Vec::new());
-    let mut triangles_out = 0;
+    let mut last = bspcsg::Mesh::default();
     for run in 0..=runs {
         let t0 = Instant::now();
         let result = combine();
         let t1 = Instant::now();
         let mesh = result.to_mesh();
         let t2 = Instant::now();
-        triangles_out = mesh.triangle_count();
         if run > 0 {
             boolean_ms.push((t1 - t0).as_secs_f64() * 1e3);
             total_ms.push((t2 - t0).as_secs_f64() * 1e3);
         }
+        last = mesh;
     }
+    let list = |v: &[f64]| {
+        v.iter()
+            .map(|t| format!("{t:.3}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let (boolean_all, total_all) = (list(&boolean_ms), list(&total_ms));
     let median = |v: &mut Vec<f64>| {
         v.sort_by(f64::total_cmp);
         (v[v.len() / 2], v[0])
@@ -65,10 +73,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (b_med, b_min) = median(&mut boolean_ms);
     let (t_med, t_min) = median(&mut total_ms);
     println!(
-        "{{\"op\": \"{}\", \"input_triangles\": {triangles_in}, \"output_triangles\": {triangles_out}, \
+        "{{\"op\": \"{}\", \"input_triangles\": {triangles_in}, \"output_triangles\": {}, \
+         \"volume\": {:.9e}, \"closed_manifold\": {}, \
          \"boolean_median_ms\": {b_med:.3}, \"boolean_min_ms\": {b_min:.3}, \
-         \"with_mesh_median_ms\": {t_med:.3}, \"with_mesh_min_ms\": {t_min:.3}, \"runs\": {runs}}}",
-        args[0]
+         \"with_mesh_median_ms\": {t_med:.3}, \"with_mesh_min_ms\": {t_min:.3}, \"runs\": {runs}, \
+         \"boolean_ms\": [{boolean_all}], \"with_mesh_ms\": [{total_all}]}}",
+        args[0],
+        last.triangle_count(),
+        last.volume(),
+        last.report().is_closed_manifold(),
     );
     Ok(())
 }
