@@ -199,7 +199,8 @@ pub(crate) struct BooleanArgs {
     pub(crate) output: OutputArgs,
 
     /// Go on with inputs that are not closed (open, non-manifold, inside out). The result is
-    /// then only as meaningful as the inputs: an open surface has no well-defined inside.
+    /// then only as meaningful as the inputs: an open surface has no well-defined inside; it
+    /// is written even where it is not closed (with a warning), which is otherwise refused.
     #[arg(long)]
     pub(crate) allow_open: bool,
 }
