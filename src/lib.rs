@@ -98,6 +98,7 @@
 
 mod bsp;
 mod disjoint_sets;
+pub mod edit;
 mod error;
 mod geom;
 mod hash;

@@ -195,8 +195,14 @@ impl Drop for TempFile {
     }
 }
 
+/// Writes one file atomically (see the module docs): a reader sees the old file or the new
+/// one, never a part (the editor's scene saves).
+pub(crate) fn write_file_atomically(dest: &Path, bytes: &[u8]) -> Result<()> {
+    write_file_with(dest, |w| w.write_all(bytes))
+}
+
 /// Writes one file atomically (see the module docs), its content made by `fill`.
-pub(crate) fn write_file_atomically(
+pub(crate) fn write_file_with(
     dest: &Path,
     fill: impl FnOnce(&mut fs::File) -> std::io::Result<()>,
 ) -> Result<()> {

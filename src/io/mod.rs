@@ -21,7 +21,7 @@ mod stl;
 
 pub use atomic::cleanup_interrupted_writes;
 use atomic::write_atomically;
-pub(crate) use atomic::write_file_atomically;
+pub(crate) use atomic::{write_file_atomically, write_file_with};
 
 /// The largest glTF buffer file read, in bytes (2 GiB): beyond any mesh held in memory here,
 /// small enough that a hostile `byteLength` cannot claim the machine's memory.

@@ -89,7 +89,7 @@ impl Rgb8 {
     /// the target is then left as it was.
     pub fn write_png(&self, path: impl AsRef<Path>) -> Result<()> {
         let path = path.as_ref();
-        crate::io::write_file_atomically(path, |file| {
+        crate::io::write_file_with(path, |file| {
             let mut enc = png::Encoder::new(BufWriter::new(file), self.width, self.height);
             enc.set_color(png::ColorType::Rgb);
             enc.set_depth(png::BitDepth::Eight);

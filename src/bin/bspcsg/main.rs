@@ -35,6 +35,7 @@ mod check;
 mod cli;
 mod combine;
 mod convert;
+mod edit;
 mod export;
 mod failure;
 mod info;
@@ -88,6 +89,7 @@ fn main() -> ExitCode {
         Command::Export(args) => export::export(&args, &progress),
         Command::Render(args) => render::render(&args, &progress),
         Command::Check(args) => check::check(&args, &progress),
+        Command::Edit(args) => edit::edit(&args),
     };
     progress.finish();
     match result {
