@@ -784,7 +784,7 @@ fn a_repeated_json_key_is_refused_naming_its_path() {
 #[test]
 fn small_messages_empty_results_tiny_cubes_and_unbounded_scenes() {
     let dir = Scratch::new("small-messages");
-    // An empty result is written with a warning and reads back as the empty mesh.
+    // An empty result is written, with a warning.
     let (a, b) = (dir.path("a.obj"), dir.path("b.obj"));
     fs::write(&a, box_obj([0.0; 3], [1.0; 3])).unwrap();
     fs::write(&b, box_obj([5.0; 3], [6.0; 3])).unwrap();
@@ -798,8 +798,25 @@ fn small_messages_empty_results_tiny_cubes_and_unbounded_scenes() {
     ])
     .ok();
     assert!(run.stderr.contains("the result is empty"), "{}", run.stderr);
-    let info = bspcsg(["info".as_ref(), out.as_os_str(), "--json".as_ref()]).ok();
-    assert!(info.stdout.contains("\"triangles\": 0"), "{}", info.stdout);
+    assert!(out.exists());
+    // An empty file is called empty (not a parser's "EOF at column 0"); a missing buffer names
+    // the document that needs it.
+    let glb = dir.path("empty.glb");
+    fs::write(&glb, "").unwrap();
+    let run = bspcsg(["info".as_ref(), glb.as_os_str()]).code(1);
+    assert!(
+        run.stderr.contains("empty.glb: the file is empty"),
+        "{}",
+        run.stderr
+    );
+    let gltf = dir.path("lost.gltf");
+    fs::write(&gltf, tetra_gltf("lost.bin", 72, r#"[{"mesh": 0}]"#, "[0]")).unwrap();
+    let run = bspcsg(["info".as_ref(), gltf.as_os_str()]).code(1);
+    assert!(
+        run.stderr.contains("lost.gltf: buffer 0 URI `lost.bin`"),
+        "{}",
+        run.stderr
+    );
     // A correctly wound cube of side 1e-110 (volume 1e-330, below the least double) is not
     // inside out.
     let tiny = dir.path("tiny.obj");

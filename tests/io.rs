@@ -426,10 +426,17 @@ fn gltf_cycle_and_bad_indices_are_errors() {
     fs::write(dir.join("t.bin"), &buf[..40]).unwrap();
     assert!(matches!(read_mesh(&p), Err(Error::Parse { .. })));
 
-    // A missing .bin names the .bin.
+    // A missing .bin names the .gltf that needs it, and the .bin.
     fs::remove_file(dir.join("t.bin")).unwrap();
     match read_mesh(&p) {
-        Err(Error::Io { path, .. }) => assert!(path.ends_with("t.bin")),
+        Err(e @ Error::Io { .. }) => {
+            let Error::Io { path, source } = &e else {
+                unreachable!()
+            };
+            assert!(path.ends_with(p.file_name().unwrap()), "{e}");
+            assert!(source.to_string().contains("t.bin"), "{e}");
+            assert_eq!(source.kind(), std::io::ErrorKind::NotFound);
+        }
         other => panic!("{other:?}"),
     }
 }
@@ -502,25 +509,26 @@ fn empty_files_are_errors() {
         fs::write(&p, "").unwrap();
         assert!(matches!(read_mesh(&p), Err(Error::Parse { .. })), "{name}");
     }
-    // Well-formed files with nothing in them are empty meshes; as operands they are refused.
+    // Well-formed files with nothing in them.
     let p = dir.join("verts.obj");
     fs::write(&p, "v 0 0 0\nv 1 0 0\n").unwrap();
-    assert!(read_mesh(&p).unwrap().is_empty());
+    assert!(matches!(read_mesh(&p), Err(Error::Parse { .. })));
     let p = dir.join("solid.stl");
     fs::write(&p, "solid empty\nendsolid empty\n").unwrap();
-    assert!(read_mesh(&p).unwrap().is_empty());
-    let err = bspcsg::read_solid(&p, &bspcsg::FromMeshOptions::default()).unwrap_err();
-    assert!(err.to_string().contains("holds no triangles"), "{err}");
+    assert!(matches!(read_mesh(&p), Err(Error::Parse { .. })));
     let p = dir.join("none.gltf");
     fs::write(&p, r#"{"asset": {"version": "2.0"}}"#).unwrap();
-    assert!(read_mesh(&p).unwrap().is_empty());
-    // An empty result (an intersection of disjoint parts) is written, and reads back as the
-    // empty mesh.
+    assert!(matches!(read_mesh(&p), Err(Error::Parse { .. })));
+    // An empty mesh can still be written, and the writers' output is valid but unreadable
+    // as a mesh (it holds no triangles).
     let empty = Mesh::default();
     for format in Format::ALL {
         let p = dir.join(format!("out.{format}"));
         write_mesh(&p, &empty, &[]).unwrap();
-        assert!(read_mesh(&p).unwrap().is_empty(), "{format}");
+        assert!(
+            matches!(read_mesh(&p), Err(Error::Parse { .. })),
+            "{format}"
+        );
     }
 }
 

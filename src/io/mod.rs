@@ -142,9 +142,7 @@ impl FromStr for Format {
 /// [`Error::Unsupported`] for an unknown extension or an unsupported feature of the format,
 /// [`Error::Io`] when the file (or a glTF's external buffer) cannot be read, and
 /// [`Error::Parse`] naming the file (and, for OBJ and ASCII STL, the line) when the content is
-/// malformed or has non-finite coordinates, or when the file is empty (zero bytes, or only
-/// white space). A well-formed file with no triangles in it (what the writers make of an empty
-/// mesh, an `endsolid` right after `solid`, a glTF with no meshes) gives the empty mesh.
+/// malformed, has non-finite coordinates, is empty or holds no triangles.
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<Mesh> {
     let path = path.as_ref();
     read_mesh_as(path, Format::from_path(path)?)
@@ -180,16 +178,18 @@ pub fn read_mesh_as(path: impl AsRef<Path>, format: Format) -> Result<Mesh> {
 ///
 /// As [`read_mesh`].
 pub fn read_mesh_from_bytes(path: &Path, bytes: &[u8], format: Format) -> Result<Mesh> {
+    // A zero-byte file is a write that never happened or a truncation, not an empty mesh (and
+    // saying so beats a parser's "EOF at column 0").
+    if bytes.iter().all(u8::is_ascii_whitespace) {
+        return Err(parse_error(path, None, "the file is empty"));
+    }
     let mesh = match format {
         Format::Obj => obj::read(path, bytes)?,
         Format::Stl => stl::read(path, bytes)?,
         Format::Gltf | Format::Glb => gltf::read(path, bytes)?,
     };
-    // A zero-byte file is a write that never happened or a truncation, not an empty mesh. A
-    // well-formed one without triangles is: the writers make such files of an empty result,
-    // and they must read back.
-    if mesh.is_empty() && bytes.iter().all(u8::is_ascii_whitespace) {
-        return Err(parse_error(path, None, "the file is empty"));
+    if mesh.is_empty() {
+        return Err(parse_error(path, None, "the file holds no triangles"));
     }
     Ok(mesh)
 }
@@ -214,19 +214,11 @@ pub fn read_mesh_from_bytes(path: &Path, bytes: &[u8], format: Format) -> Result
 ///
 /// # Errors
 ///
-/// As [`read_mesh`] for the file itself, [`Error::Parse`] when it holds no triangles, and
-/// [`Error::InvalidMesh`] with the path and the [`MeshDefect`](crate::MeshDefect) when the mesh
-/// does not bound a solid.
+/// As [`read_mesh`] for the file itself, and [`Error::InvalidMesh`] with the path and the
+/// [`MeshDefect`](crate::MeshDefect) when the mesh does not bound a solid.
 pub fn read_solid(path: impl AsRef<Path>, options: &FromMeshOptions) -> Result<Solid> {
     let path = path.as_ref();
     let mesh = read_mesh(path)?;
-    if mesh.is_empty() {
-        return Err(parse_error(
-            path,
-            None,
-            "the file holds no triangles, so it bounds no solid",
-        ));
-    }
     Solid::from_mesh_with(&mesh, options).map_err(|e| match e {
         // "x.obj is not closed: …", "x.obj is inside out: …", else "is not a valid solid".
         Error::InvalidMesh { path: None, defect } => Error::InvalidMesh {

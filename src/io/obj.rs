@@ -157,17 +157,8 @@ impl Parsed {
                 format!("vertex index {i} is out of range: the file has {vertices} vertices"),
             ));
         }
-        // No faces is an empty mesh (what the writer makes of an empty result), but a file
-        // without a single vertex, face or comment is no OBJ at all.
-        let looks_like_obj = bytes
-            .split(|&b| b == b'\n')
-            .any(|l| l.starts_with(b"#") || l.starts_with(b"v ") || l.starts_with(b"f "));
-        if parsed.faces.is_empty() && !looks_like_obj {
-            return Err(parse_error(
-                path,
-                None,
-                "the file holds no faces, vertices or comments: it is no OBJ file",
-            ));
+        if parsed.faces.is_empty() {
+            return Err(parse_error(path, None, "the file holds no faces"));
         }
         Ok(parsed)
     }

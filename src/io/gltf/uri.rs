@@ -110,9 +110,13 @@ fn read_beside(
         _ => Path::new("."),
     };
     let file = dir.join(name);
+    // Named with the document that refers to the file: a missing `.bin` is the `.gltf`'s fault.
     let io_err = |p: &Path| {
-        let p: PathBuf = p.to_path_buf();
-        move |source| Error::Io { path: p, source }
+        let shown = format!("buffer {i} URI `{uri}`: {}", p.display());
+        move |source: std::io::Error| Error::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::new(source.kind(), format!("{shown}: {source}")),
+        }
     };
     // Symlinks resolved on both sides: a link inside the folder may not lead out of it.
     let real_dir = std::fs::canonicalize(dir).map_err(io_err(dir))?;
