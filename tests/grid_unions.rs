@@ -138,3 +138,33 @@ fn a_thousand_grid_boxes_union_exactly() {
     let dense = random_cells(1000, 10, 3);
     let (_, _) = assert_exact_union(&dense, false, "1000 boxes in 10³");
 }
+
+/// A 32×16 and a 64×32 sphere minus the same sphere turned by 1e-4° about a skew axis: every
+/// pair of matching facets crosses at 1.7e-6 rad, leaving slivers up to 1.7e-7 thick. The
+/// result must be closed with a volume ≥ 0, in bounded time. Open: each operand's facet is
+/// cut where the other's plane crosses it, the two cut lines landing a rounding error over the
+/// angle apart (6e-11, beyond the 3e-11 weld); 32×16 leaves 19 boundary edges and 4 flat
+/// shells in 0.5 s, 64×32 197 boundary edges in 3 s, and 128×64 a negative solid volume
+/// (−5.6e-7) in 14 s (see the closing note of issue 11).
+#[test]
+#[ignore = "open: near-coplanar facets crossing at 1.7e-6 rad leave slits and flat shells"]
+fn sphere_minus_itself_turned_a_ten_thousandth_of_a_degree() {
+    for (segments, rings) in [(32, 16), (64, 32)] {
+        let a = Solid::sphere(1.0, segments, rings).unwrap();
+        let b = a
+            .clone()
+            .rotate_axis_angle(DVec3::new(0.3, 1.0, 0.2), 1e-4)
+            .unwrap();
+        let start = std::time::Instant::now();
+        let result = a.difference(&b);
+        let mesh = result.to_mesh();
+        let elapsed = start.elapsed();
+        let what = format!("{segments}×{rings}");
+        let report = assert_closed_manifold(&mesh, &what);
+        assert!(
+            result.volume() >= 0.0 && report.volume >= 0.0,
+            "{what}: {report}"
+        );
+        assert!(elapsed.as_secs_f64() < 2.0, "{what}: {elapsed:?}");
+    }
+}
