@@ -7,7 +7,7 @@
 //! `byteLength` and [`MAX_BUFFER_BYTES`] before a byte is read.
 
 use std::io::Read as _;
-use std::path::{Component, Path, PathBuf};
+use std::path::{Component, Path};
 
 use base64::Engine as _;
 
