@@ -10,13 +10,14 @@
 // 3. Export (GLB, BSP route) must download a closed mesh; `check` must pass.
 // 4. The mechanical example: preview frames per second at 800×600 in software GL, and the
 //    server's bake (marching cubes) and BSP-route export times, which must be under 1 s.
+// 5. Every example scene: its shader's frame against `bspcsg render` of the file.
 //
 // Pixel tolerance of step 2, in 8-bit sRGB levels over the 400×300 image: mean absolute
 // difference per channel ≤ 2, and at most 1.5 % of pixels differing by more than 48 in any
 // channel. The GPU marches in float32, the CPU in float64, so rays that graze a silhouette or an
 // edge can land on the other side of it: those pixels differ a lot, but there are few of them.
 import { spawn, execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, writeFileSync, copyFileSync, mkdirSync } from 'node:fs';
+import { mkdtempSync, readFileSync, readdirSync, writeFileSync, copyFileSync, mkdirSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { chromium } from 'playwright-core';
@@ -41,6 +42,7 @@ const watchdog = setTimeout(() => {
 }, 150_000);
 
 const servers = [];
+const errors = [];
 function serve(scene) {
   return new Promise((ok, fail) => {
     const p = spawn(bin, ['edit', scene, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
@@ -103,7 +105,6 @@ async function editScene(browser) {
   const scene = join(scratch, 'part.json');
   const url = await serve(scene);
   const page = await browser.newPage({ viewport: { width: 1500, height: 900 }, acceptDownloads: true });
-  const errors = [];
   page.on('pageerror', (e) => errors.push(e.message));
   await page.goto(url);
   await page.waitForSelector('#tree');
@@ -147,6 +148,7 @@ async function editScene(browser) {
   await page.click('#save');
   await page.waitForFunction(() => /saved/.test(document.getElementById('message').textContent));
   const saved = JSON.parse(readFileSync(scene, 'utf8'));
+  check((await page.textContent('#log')).includes('saved part.json'), 'the log records the save');
   const sub = saved.tree.children[0];
   check(saved.tree.op === 'union' && saved.tree.children.length === 1, 'saved: one node under the root union');
   check(sub.op === 'subtract' && sub.children.length === 2, 'saved: a subtraction of two nodes');
@@ -164,9 +166,19 @@ async function editScene(browser) {
     window.editor.preview.selection = [-1, -1];
     window.editor.preview.frame();
   });
-  const cpuPng = join(shots, 'editor-cpu.png');
+  const cmp = await compareWithCpu(page, scene, join(shots, 'editor-cpu.png'));
+  writeFileSync(join(shots, 'editor-gpu.png'), Buffer.from(cmp.gpu.split(',')[1], 'base64'));
+  console.log(`preview vs CPU render: mean |diff| ${cmp.mean.toFixed(3)} levels, ${(100 * cmp.outliers).toFixed(3)} % pixels > ${OUTLIER_LEVEL}, object covers ${(100 * cmp.covered).toFixed(1)} %`);
+  check(cmp.covered > 0.05, 'the CPU render shows the part');
+  check(cmp.mean <= MEAN_LIMIT && cmp.outliers <= OUTLIER_LIMIT, 'the GPU preview matches the CPU render within tolerance');
+  await exportAndCheck(page);
+  await page.close();
+}
+
+// The canvas (400×300) against `bspcsg render SCENE --size 400x300`.
+async function compareWithCpu(page, scene, cpuPng) {
   execFileSync(bin, ['--quiet', 'render', scene, '-o', cpuPng, '--size', '400x300']);
-  const cmp = await page.evaluate(async (cpu) => {
+  return page.evaluate(async (cpu) => {
     const img = new Image();
     img.src = `data:image/png;base64,${cpu}`;
     await img.decode();
@@ -195,11 +207,9 @@ async function editScene(browser) {
     }
     return { mean: sum / (w * h * 3), outliers: outliers / (w * h), covered: hit / (w * h), gpu: document.getElementById('preview').toDataURL('image/png') };
   }, readFileSync(cpuPng).toString('base64'));
-  writeFileSync(join(shots, 'editor-gpu.png'), Buffer.from(cmp.gpu.split(',')[1], 'base64'));
-  console.log(`preview vs CPU render: mean |diff| ${cmp.mean.toFixed(3)} levels, ${(100 * cmp.outliers).toFixed(3)} % pixels > ${OUTLIER_LEVEL}, object covers ${(100 * cmp.covered).toFixed(1)} %`);
-  check(cmp.covered > 0.05, 'the CPU render shows the part');
-  check(cmp.mean <= MEAN_LIMIT && cmp.outliers <= OUTLIER_LIMIT, 'the GPU preview matches the CPU render within tolerance');
+}
 
+async function exportAndCheck(page) {
   // Export: a GLB by the BSP route, downloaded, closed.
   await page.selectOption('#export-format', 'glb');
   await page.selectOption('#export-via', 'bsp');
@@ -223,12 +233,9 @@ async function editScene(browser) {
 
   // A picture of the editor with the sphere selected (highlighted), for the README.
   await page.selectOption('#preview-size', 'fit');
-  n = await previews(page);
   await page.click('.node[data-path="$.tree.children[0].children[1]"]');
   await page.waitForTimeout(300);
   await page.screenshot({ path: join(shots, 'editor.png') });
-  check(errors.length === 0, `no page errors ${errors.join('; ')}`);
-  await page.close();
 }
 
 async function measureMechanical(browser) {
@@ -264,6 +271,31 @@ async function measureMechanical(browser) {
   console.log(`mechanical_part preview at 800×600 in software GL: ${fps.fps.toFixed(2)} fps (median ${median(times.false).toFixed(0)} ms a frame; ${median(times.true).toFixed(0)} ms skipping primitives by bounding spheres); while dragging (half resolution, scaled up) ${drag.fps.toFixed(2)} fps`);
   check(fps.fps >= 1, 'the preview renders at least one frame a second in software GL');
   await page.screenshot({ path: join(shots, 'editor-mechanical.png') });
+
+  // Every example scene: the shader generated from it against the CPU render of its file (their
+  // cameras, lights, materials, rotations, smooth blends, extrusions and revolutions).
+  const before = await previews(page);
+  await page.selectOption('#preview-size', '400x300');
+  await nextPreview(page, before);
+  for (const name of readdirSync('examples/scenes').filter((f) => f.endsWith('.json')).sort()) {
+    const file = join('examples/scenes', name);
+    await page.evaluate(async (doc) => {
+      const r = await fetch('/api/shader?w=400&h=300', {
+        method: 'POST', headers: { 'Content-Type': 'application/json' }, body: doc,
+      });
+      const body = await r.json();
+      window.editor.state.autoFrame = false;
+      window.editor.setCamera(body.camera);
+      window.editor.preview.selection = [-1, -1];
+      window.editor.preview.setShader(body.glsl);
+      window.editor.preview.frame();
+    }, readFileSync(file, 'utf8'));
+    const cmp = await compareWithCpu(page, file, join(shots, `example-cpu-${name}.png`));
+    writeFileSync(join(shots, `example-gpu-${name}.png`), Buffer.from(cmp.gpu.split(',')[1], 'base64'));
+    console.log(`${name}: preview vs CPU render: mean |diff| ${cmp.mean.toFixed(3)} levels, ${(100 * cmp.outliers).toFixed(3)} % pixels > ${OUTLIER_LEVEL}`);
+    check(cmp.covered > 0.05 && cmp.mean <= MEAN_LIMIT && cmp.outliers <= OUTLIER_LIMIT, `${name}: the GPU preview matches the CPU render within tolerance`);
+  }
+  check(errors.length === 0, `no page errors ${errors.join('; ')}`);
   const document = JSON.parse(readFileSync(scene, 'utf8'));
   for (const via of ['sdf', 'bsp']) {
     const t0 = performance.now();

@@ -13,6 +13,7 @@ const state = {
   at: -1,
   selected: null, // path (array) of the selected node
   marked: [], // paths of Ctrl-clicked siblings
+  notes: [], // saves and exports, each after history entry `after`
   valid: false,
   leafPaths: [],
   serverCamera: null,
@@ -56,6 +57,7 @@ async function post(url, body) {
 // ---- Actions and undo -----------------------------------------------------------------------
 function record(label) {
   state.history.length = state.at + 1;
+  state.notes = state.notes.filter((n) => n.after <= state.at);
   state.history.push({ label, json: JSON.stringify(state.doc), time: new Date() });
   state.at = state.history.length - 1;
   changed();
@@ -500,6 +502,12 @@ function renderLog() {
     if (i > state.at) li.className = 'undone';
     if (i === state.at) li.className = 'current';
     el.appendChild(li);
+    for (const n of state.notes.filter((n) => n.after === i)) {
+      const note = document.createElement('li');
+      note.textContent = `${n.time.toLocaleTimeString()} ${n.text}`;
+      note.className = 'note';
+      el.appendChild(note);
+    }
   });
   el.scrollTop = el.scrollHeight;
   $('undo').disabled = state.at <= 0;
@@ -937,11 +945,10 @@ async function save() {
   logNote(`saved ${body.saved}`);
   return true;
 }
+// Saves and exports are logged too, after the action they followed; they are not undoable.
 function logNote(text) {
-  const li = document.createElement('li');
-  li.textContent = `${new Date().toLocaleTimeString()} ${text}`;
-  li.className = 'note';
-  $('log').appendChild(li);
+  state.notes.push({ after: state.at, text, time: new Date() });
+  renderLog();
 }
 async function exportMesh() {
   const format = $('export-format').value, via = $('export-via').value;
@@ -1046,5 +1053,5 @@ async function start() {
 }
 
 // What the end-to-end test reads.
-window.editor = { state, measureFps, preview, pathString };
+window.editor = { state, measureFps, preview, pathString, setCamera };
 start();
