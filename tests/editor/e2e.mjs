@@ -17,7 +17,7 @@
 // channel. The GPU marches in float32, the CPU in float64, so rays that graze a silhouette or an
 // edge can land on the other side of it: those pixels differ a lot, but there are few of them.
 import { spawn, execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, readdirSync, writeFileSync, copyFileSync, mkdirSync } from 'node:fs';
+import { mkdtempSync, readFileSync, readdirSync, writeFileSync, copyFileSync, mkdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { chromium } from 'playwright-core';
@@ -231,9 +231,35 @@ async function exportAndCheck(page) {
   await page.screenshot({ path: join(shots, 'editor-mesh.png') });
   await page.selectOption('#view-mode', 'preview');
 
+  // Selecting the sphere tints its leaf: the frame changes where the sphere decides the surface.
+  const tinted = await page.evaluate(async () => {
+    const gl = window.editor.preview.gl;
+    const grab = () => {
+      window.editor.preview.frame();
+      const px = new Uint8Array(400 * 300 * 4);
+      gl.readPixels(0, 0, 400, 300, gl.RGBA, gl.UNSIGNED_BYTE, px);
+      return px;
+    };
+    window.editor.preview.selection = [-1, -1];
+    const plain = grab();
+    window.editor.preview.selection = [1, 2];
+    const lit = grab();
+    let changed = 0, orange = 0;
+    for (let i = 0; i < plain.length; i += 4) {
+      if (plain[i] !== lit[i] || plain[i + 1] !== lit[i + 1] || plain[i + 2] !== lit[i + 2]) {
+        changed++;
+        if (lit[i] > lit[i + 2]) orange++;
+      }
+    }
+    return { changed: changed / (400 * 300), orange };
+  });
+  check(tinted.changed > 0.02 && tinted.orange > 0.9 * tinted.changed * 400 * 300, `the selected sphere is highlighted (${(100 * tinted.changed).toFixed(1)} % of pixels tinted)`);
+  await page.click('.node[data-path="$.tree.children[0].children[1]"]');
+  const leaves = await page.evaluate(() => window.editor.preview.selection);
+  check(leaves[0] === 1 && leaves[1] === 2, 'clicking the sphere selects its leaf (1) in the shader');
+
   // A picture of the editor with the sphere selected (highlighted), for the README.
   await page.selectOption('#preview-size', 'fit');
-  await page.click('.node[data-path="$.tree.children[0].children[1]"]');
   await page.waitForTimeout(300);
   await page.screenshot({ path: join(shots, 'editor.png') });
 }
@@ -325,4 +351,7 @@ main()
   .finally(() => {
     for (const s of servers) s.kill();
     clearTimeout(watchdog);
+    // The scratch folder goes, except after a failure when it holds the pictures.
+    if (process.exitCode && shots === scratch) console.error(`pictures kept in ${scratch}`);
+    else rmSync(scratch, { recursive: true, force: true });
   });
