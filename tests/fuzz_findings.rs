@@ -112,6 +112,7 @@ fn scenes_bsp_route_of_coarse_brackets() {
         let coarse = bspcsg::TessellationOptions {
             tolerance: Some(d / 20.0),
             cell: Some(d / 12.0),
+            max_angle: None,
         };
         let report = scene.to_solid(&coarse).unwrap().to_mesh().report();
         assert!(
