@@ -89,6 +89,26 @@ pub enum Error {
         message: String,
     },
 
+    /// A boolean's operands meet in a region too small for the precision of their coordinates
+    /// (or of the tolerance an earlier boolean left them): its result would not be right to one
+    /// part in 10⁵ of that region, so it is refused (see the crate docs, `# Precision`). Remedy:
+    /// move the model nearer the origin, or make the features that meet larger.
+    #[error(
+        "beyond precision: where the operands meet (or a part lies), a region {region:.3e} \
+         across, {magnitude:.3e} from the origin, is only resolved to {eps:.3e} (one part in \
+         {:.1e}; one part in 1e5 is needed); move the model nearer the origin or make the \
+         features that meet larger",
+        region / eps
+    )]
+    BeyondPrecision {
+        /// The diagonal of the region where the operands met.
+        region: f64,
+        /// The largest coordinate magnitude in it.
+        magnitude: f64,
+        /// The tolerance that region needed.
+        eps: f64,
+    },
+
     /// A scene document is invalid. `json_path` locates the fault, e.g. `$.children[2].data.radius`;
     /// `file` names the document where it was read from a file.
     #[error("{}{json_path}: {message}", file.as_ref().map(|f| format!("{}: ", f.display())).unwrap_or_default())]
@@ -193,6 +213,14 @@ pub enum MeshDefect {
         /// The face.
         face: usize,
     },
+    /// Every triangle spans no area within the rounding of its coordinates: the mesh bounds
+    /// nothing, or it is too small for its distance from the origin.
+    AllZeroArea {
+        /// How many triangles.
+        triangles: usize,
+        /// The largest coordinate magnitude.
+        reach: f64,
+    },
     /// A face whose boundary crosses itself, so it cannot be triangulated.
     SelfIntersectingFace {
         /// The face.
@@ -287,6 +315,12 @@ impl fmt::Display for MeshDefect {
                 "faces that repeat a vertex index: {faces} (first: face {first_face} = {indices:?})"
             ),
             MeshDefect::ZeroAreaFace { face } => write!(f, "face {face} has no area"),
+            MeshDefect::AllZeroArea { triangles, reach } => write!(
+                f,
+                "all {triangles} triangles have zero area within the rounding of their \
+                 coordinates (up to {reach:e} from the origin): the mesh bounds no volume, or is \
+                 too small for its distance from the origin; move it nearer the origin"
+            ),
             MeshDefect::SelfIntersectingFace { face } => write!(
                 f,
                 "face {face} is self-intersecting and cannot be triangulated"

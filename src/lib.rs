@@ -87,6 +87,7 @@
 
 mod bsp;
 mod disjoint_sets;
+pub mod edit;
 mod error;
 mod geom;
 mod hash;

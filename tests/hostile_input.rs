@@ -347,3 +347,132 @@ fn failed_main_rename_restores_the_old_companion() {
     assert!(bspcsg::write_mesh_as(s.path("out.gltf"), &m, &[], bspcsg::Format::Gltf).is_err());
     assert_eq!(s.files(), ["b.obj", "out.gltf"]);
 }
+
+/// The crate's former unkeyed position hash (FxHash's multiply-rotate over the bytes of
+/// `[u64; 3]`, length first), to craft positions that all land in one bucket under it.
+fn unkeyed_hash_state(state: u64, bytes: &[u8]) -> u64 {
+    bytes.iter().fold(state, |h, &b| {
+        (h.rotate_left(5) ^ u64::from(b)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95)
+    })
+}
+
+/// OBJ text of `points` as vertices, each three a triangle.
+fn points_obj(points: &[[f64; 3]]) -> String {
+    let mut s = String::with_capacity(points.len() * 60);
+    for p in points {
+        s += &format!("v {:?} {:?} {:?}\n", p[0], p[1], p[2]);
+    }
+    for k in (0..points.len() - 2).step_by(3) {
+        s += &format!("f {} {} {}\n", k + 1, k + 2, k + 3);
+    }
+    s
+}
+
+#[test]
+fn welder_hash_flooding_costs_no_more_than_random_positions() {
+    // 16384 positions whose unkeyed hashes agree in the low 13 bits (the bucket of a table
+    // sized for them), against as many random ones: the welder's keyed hash spreads both.
+    const N: usize = 16384;
+    const MASK: u64 = (1 << 13) - 1;
+    let prefix = unkeyed_hash_state(
+        0,
+        &[
+            &3usize.to_ne_bytes()[..],
+            &1.0f64.to_bits().to_le_bytes(),
+            &2.0f64.to_bits().to_le_bytes(),
+        ]
+        .concat(),
+    );
+    let mut crafted = Vec::with_capacity(N);
+    let mut k = 0u64;
+    while crafted.len() < N {
+        let z = f64::from_bits(3.0f64.to_bits() + k);
+        k += 1;
+        if unkeyed_hash_state(prefix, &z.to_bits().to_le_bytes()) & MASK == 0 {
+            crafted.push([1.0, 2.0, z]);
+        }
+    }
+    // Random positions of the same form (same text length per line).
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let random: Vec<[f64; 3]> = (0..N)
+        .map(|_| {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            [1.0, 2.0, f64::from_bits(3.0f64.to_bits() + (state >> 24))]
+        })
+        .collect();
+    let dir = Scratch::new("flood");
+    let (c, r) = (dir.path("crafted.obj"), dir.path("random.obj"));
+    fs::write(&c, points_obj(&crafted)).unwrap();
+    fs::write(&r, points_obj(&random)).unwrap();
+    let best = |p: &Path| {
+        (0..5)
+            .map(|_| {
+                let t = Instant::now();
+                let m = read_mesh(p).unwrap();
+                assert_eq!(m.positions.len(), N / 3 * 3);
+                t.elapsed()
+            })
+            .min()
+            .unwrap()
+    };
+    let (tc, tr) = (best(&c), best(&r));
+    assert!(tc <= 3 * tr, "crafted {tc:?} vs random {tr:?}");
+}
+
+#[test]
+fn a_tiny_cube_at_a_unit_cube_corner_never_gives_a_broken_result_with_success() {
+    let dir = Scratch::new("tiny-corner");
+    let unit = dir.path("unit.obj");
+    fs::write(&unit, box_obj([0.0; 3], [1.0; 3])).unwrap();
+    for s in [1e-20, 1e-60, 1e-100] {
+        let tiny = dir.path(&format!("tiny{s:e}.obj"));
+        fs::write(&tiny, box_obj([-s; 3], [0.0; 3])).unwrap();
+        for op in ["union", "difference"] {
+            let out = dir.path(&format!("{op}{s:e}.obj"));
+            let run = bspcsg([
+                op.as_ref(),
+                unit.as_os_str(),
+                tiny.as_os_str(),
+                "-o".as_ref(),
+                out.as_os_str(),
+            ]);
+            // Either right (closed, the unit cube's volume) or refused with exit 2 and nothing
+            // written: never exit 0 with an open mesh.
+            if run.code == 0 {
+                let report = read_mesh(&out).unwrap().report();
+                assert!(report.is_closed_manifold(), "{op} {s:e}: {report}");
+                assert!((report.volume - 1.0).abs() < 1e-12, "{op} {s:e}: {report}");
+            } else {
+                let run = run.code(2);
+                assert!(
+                    run.stderr.contains("not a closed 2-manifold"),
+                    "{}",
+                    run.stderr
+                );
+                assert!(!out.exists(), "{op} {s:e}: nothing is written");
+            }
+        }
+    }
+}
+
+/// OBJ text of an axis-aligned box, outward-facing quads.
+fn box_obj(min: [f64; 3], max: [f64; 3]) -> String {
+    let mut s = String::new();
+    for i in 0..8 {
+        let c = |k: usize, bit: usize| if i & bit == 0 { min[k] } else { max[k] };
+        s += &format!("v {:?} {:?} {:?}\n", c(0, 4), c(1, 2), c(2, 1));
+    }
+    for f in [
+        [1, 2, 4, 3],
+        [5, 7, 8, 6],
+        [1, 5, 6, 2],
+        [3, 4, 8, 7],
+        [1, 3, 7, 5],
+        [2, 6, 8, 4],
+    ] {
+        s += &format!("f {} {} {} {}\n", f[0], f[1], f[2], f[3]);
+    }
+    s
+}

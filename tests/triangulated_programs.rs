@@ -83,10 +83,10 @@ fn config() -> ProptestConfig {
 }
 
 /// Found by a random run: a box minus two exact-grid boxes whose cavities touch along an edge
-/// (x = 0, z = 0.25). The solid meets itself along that edge, which `to_mesh` must split into two
-/// edges; it leaves one non-manifold edge and two non-manifold vertices. Open (issue 11).
+/// (x = 0, z = 0.25). The solid meets itself along that edge, whose ends lie in solid material:
+/// paired across the solid, its four faces left one non-manifold edge and two non-manifold
+/// vertices; `to_mesh` now pairs them across the cavities and splits the edge.
 #[test]
-#[ignore = "open: a solid touching itself along an edge between two grid notches"]
 fn two_notches_touching_along_an_edge() {
     let at = |min, size| {
         Placed {

@@ -242,7 +242,8 @@ impl Node {
 /// An axis-aligned plane through a gap between polygon centroids near their median, on the
 /// longest axis that has one. The gap is wider than four tolerances, so no polygon lies in the
 /// plane and both sides keep a polygon whose centroid, hence some vertex, is clearly on it.
-/// `None` when no axis has such a gap or the plane would cut too many polygons.
+/// `None` when no axis has such a gap, the plane would cut too many polygons, or one side would
+/// get no polygon whole.
 fn cell_plane(ids: &[u32], arena: &Arena, eps: f64) -> Option<Plane> {
     let size = Aabb::from_points(ids.iter().map(|&i| &arena.centroids[i as usize])).size();
     let mut axes = [0usize, 1, 2];
@@ -258,14 +259,22 @@ fn cell_plane(ids: &[u32], arena: &Arena, eps: f64) -> Option<Plane> {
         let Some(at) = gap_near_median(&mut values, 4.0 * eps) else {
             continue;
         };
-        let spanning = ids
-            .iter()
-            .filter(|&&i| {
-                let b = &arena.boxes[i as usize];
-                b.min[axis] < at - eps && b.max[axis] > at + eps
-            })
-            .count();
-        if spanning * 2 <= n {
+        let (mut spanning, mut whole_front, mut whole_back) = (0usize, 0usize, 0usize);
+        for &i in ids {
+            let b = &arena.boxes[i as usize];
+            if b.min[axis] > at + eps {
+                whole_front += 1;
+            } else if b.max[axis] < at - eps {
+                whole_back += 1;
+            } else if b.min[axis] < at - eps && b.max[axis] > at + eps {
+                spanning += 1;
+            }
+        }
+        // Each side must lose a polygon: a plane that only cuts pieces off the polygons it
+        // spans would be followed by another half as far away, and so on (polygons in z = 2
+        // beside walls rising from it drew planes at 2 + 2⁻¹, 2 + 2⁻², … 2 + 2⁻³⁶, slivers
+        // thinner than the weld that moved vertices off their grid).
+        if spanning * 2 <= n && whole_front > 0 && whole_back > 0 {
             let mut normal = DVec3::ZERO;
             normal[axis] = 1.0;
             return Some(Plane::through(normal * at, normal));

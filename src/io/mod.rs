@@ -470,6 +470,15 @@ fn write_atomically(files: &[OutFile]) -> Result<()> {
     }
 }
 
+/// Writes one file atomically: a temporary beside it, flushed, then renamed into place, so a
+/// reader sees the old file or the new one, never a part (the editor's scene saves).
+pub(crate) fn write_file_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
+    write_atomically(&[OutFile {
+        path: path.to_path_buf(),
+        bytes: bytes.to_vec(),
+    }])
+}
+
 /// An existing file kept under a hidden name beside it while it is being replaced.
 struct Backup {
     dest: PathBuf,

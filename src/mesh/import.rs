@@ -106,6 +106,14 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
             Polygon::new(corners.as_slice(), source)
         })
         .collect();
+    // A mesh of triangles that all span no area bounds nothing: say so rather than return the
+    // empty solid, which would pass for a right answer.
+    if !triangles.is_empty() && triangles.iter().all(Option::is_none) {
+        return Err(Error::mesh(MeshDefect::AllZeroArea {
+            triangles: triangles.len(),
+            reach: mesh.bbox().max_abs(),
+        }));
+    }
     let polygons = if options.merge_coplanar {
         merge_coplanar(mesh, &triangles)
     } else {

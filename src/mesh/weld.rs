@@ -3,19 +3,19 @@
 use glam::DVec3;
 use smallvec::SmallVec;
 
-use crate::hash::{FxBuild, FxHashMap, key};
+use crate::hash::{FxHashMap, KeyedBuild, KeyedHashMap, key};
 
 /// Assigns one index per distinct position.
 #[derive(Default)]
 pub(crate) struct Welder {
-    map: FxHashMap<[u64; 3], u32>,
+    map: KeyedHashMap<[u64; 3], u32>,
     pub positions: Vec<DVec3>,
 }
 
 impl Welder {
     pub fn with_capacity(n: usize) -> Self {
         Welder {
-            map: FxHashMap::with_capacity_and_hasher(n, FxBuild::default()),
+            map: KeyedHashMap::with_capacity_and_hasher(n, KeyedBuild::default()),
             positions: Vec::with_capacity(n),
         }
     }
@@ -115,8 +115,8 @@ pub(crate) fn weld_within(points: &[DVec3], delta: f64, wide: &Wide) -> (Vec<DVe
         let c = (p / cell_size).floor();
         [c.x as i64, c.y as i64, c.z as i64]
     };
-    let mut grid: FxHashMap<[i64; 3], SmallVec<[u32; 2]>> =
-        FxHashMap::with_capacity_and_hasher(exact.positions.len(), FxBuild::default());
+    let mut grid: KeyedHashMap<[i64; 3], SmallVec<[u32; 2]>> =
+        KeyedHashMap::with_capacity_and_hasher(exact.positions.len(), KeyedBuild::default());
     let mut reps: Vec<DVec3> = Vec::with_capacity(exact.positions.len());
     let mut rep_reach: Vec<f64> = Vec::with_capacity(exact.positions.len());
     let mut rep_of: Vec<u32> = Vec::with_capacity(exact.positions.len());

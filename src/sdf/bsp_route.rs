@@ -88,7 +88,8 @@ impl Scene {
     ///
     /// [`Error::Unbounded`] for a scene with an unbounded half-space,
     /// [`Error::InvalidParameter`] for a tolerance or cell that is not finite and positive or
-    /// too fine for a primitive.
+    /// too fine for a primitive; [`Error::BeyondPrecision`] where parts meet (or a part lies)
+    /// too far from the origin for their size (see [`Solid::check_precision`]).
     pub fn to_solid(&self, opts: &TessellationOptions) -> Result<Solid> {
         let world = self.bound.bbox;
         if world.is_empty() {
@@ -118,7 +119,9 @@ impl Scene {
             world,
             min_segments,
         };
-        ctx.solid(self.root)
+        let solid = ctx.solid(self.root)?;
+        solid.check_precision()?;
+        Ok(solid)
     }
 }
 

@@ -30,6 +30,8 @@ pub(crate) struct Leaf {
     /// Largest over smallest stretch of the frame.
     pub condition: f64,
     pub material: u32,
+    /// The tree node it came from (the scene maps it to the node's JSON path).
+    pub node: NodeId,
 }
 
 /// A binary combination of the two values on top of the stack (`a` below `b`).
@@ -116,7 +118,7 @@ impl Scratch {
 
 impl Leaf {
     /// A primitive placed by `frame`; refused when the frame cannot be inverted.
-    fn new(shape: &Shape, material: u32, frame: &Frame) -> Result<Leaf> {
+    fn new(shape: &Shape, material: u32, node: NodeId, frame: &Frame) -> Result<Leaf> {
         let to_local = frame.to_world.inverse();
         if !(to_local.is_finite() && frame.to_world.is_finite()) {
             return Err(singular());
@@ -129,6 +131,7 @@ impl Leaf {
             factor: frame.sigma,
             condition: frame.condition(),
             material,
+            node,
         })
     }
 
@@ -200,7 +203,7 @@ impl Program {
                     match &node.kind {
                         NodeKind::Leaf { shape, material } => {
                             prog.instrs.push(Instr::Leaf(prog.leaves.len() as u32));
-                            prog.leaves.push(Leaf::new(shape, *material, &frame)?);
+                            prog.leaves.push(Leaf::new(shape, *material, id, &frame)?);
                             depth += 1;
                             prog.depth = prog.depth.max(depth);
                         }

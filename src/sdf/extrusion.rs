@@ -59,7 +59,13 @@ impl Extrusion {
         }
     }
 
-    fn is_plain(&self) -> bool {
+    /// The constants of the twisted / tapered bound: `(reach, turn, scale_rate,
+    /// scale_per_rho)`, as [`Extrusion::distance`] uses them.
+    pub(crate) fn slope(&self) -> (f64, f64, f64, f64) {
+        (self.reach, self.turn, self.scale_rate, self.scale_per_rho)
+    }
+
+    pub(crate) fn is_plain(&self) -> bool {
         self.twist == 0.0 && self.scale_top == DVec2::ONE
     }
 

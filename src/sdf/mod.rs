@@ -32,7 +32,11 @@ pub use scene::{
 
 use crate::error::Result;
 use crate::mesh::Mesh;
-use eval::{Program, Scratch};
+use eval::Scratch;
+pub(crate) use eval::{Instr, Op, Program};
+pub(crate) use shapes::Shape;
+pub(crate) use shapes2d::{Instr2, Place2, Prim2, Shape2};
+pub(crate) use tree::SmoothKind;
 
 impl Scene {
     /// Bakes the scene into a closed, consistently oriented triangle mesh by marching cubes,

@@ -172,6 +172,11 @@ impl Prim2 {
 }
 
 impl Shape2 {
+    /// The placed primitives and the postfix program over them.
+    pub(crate) fn parts(&self) -> (&[(Prim2, Place2)], &[Instr2]) {
+        (&self.leaves, &self.instrs)
+    }
+
     /// The signed distance (a bound where booleans meet; see the module docs).
     pub(crate) fn distance(&self, p: DVec2) -> f64 {
         let mut stack: smallvec::SmallVec<[f64; 8]> = smallvec::SmallVec::new();

@@ -4,11 +4,11 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::Solid;
+use super::{PrecisionLoss, Solid};
 use crate::bsp::{Coplanar, FOCUS_MARGIN, Label, Surface, Tree};
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, Plane, Tolerance};
-use crate::hash::{FxHashMap, key};
+use crate::hash::{KeyedHashMap, key};
 use crate::polygon::{Polygon, Split};
 
 /// A boolean operation.
@@ -124,14 +124,19 @@ pub(super) fn boolean_owned(a: Solid, b: Solid, op: BoolOp) -> Solid {
 
 fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
     let (box_a, box_b) = (a.bbox(), b.bbox());
-    let tol = Tolerance::for_operands(&box_a, &box_b)
+    let region = Tolerance::region(&box_a, &box_b);
+    let needed = Tolerance::for_region(&region)
         .max(Tolerance::new(a.carried_eps()))
-        .max(Tolerance::new(b.carried_eps()))
-        .max(floor);
-    let eps = tol.eps();
+        .max(Tolerance::new(b.carried_eps()));
+    let eps = needed.max(floor).eps();
+    // Inherited first, so the first loss on the way is the one reported.
+    let inherited = a.precision_loss().or(b.precision_loss());
     if a.is_empty() || b.is_empty() || !box_a.overlaps(&box_b, eps) {
-        return disjoint(a, b, op, floor.eps());
+        return disjoint(a, b, op, floor.eps(), inherited);
     }
+    // A tolerance asked for by the caller is not a loss; one forced by the coordinates'
+    // magnitude or carried from a larger boolean is, where it dwarfs the region.
+    let lost = inherited.or_else(|| PrecisionLoss::check(&region, needed));
     let a = cut_down(a.into_polygons(), &box_b, eps);
     let b = cut_down(b.into_polygons(), &box_a, eps);
     let (a_rule, a_keep) = match op {
@@ -176,7 +181,7 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
         }
         polygons.push(p);
     }
-    Solid::with_eps(polygons, eps)
+    Solid::with_eps(polygons, eps, lost)
 }
 
 /// A polygon whose box is this many times the other operand's is cut down first.
@@ -259,8 +264,8 @@ fn boxes(polys: &[Polygon], near: &[bool]) -> Vec<Aabb> {
 /// needs one ray.
 fn keep_far(polys: &[Polygon], near: &[bool], other: &Surface, keep: Label) -> Vec<Polygon> {
     let mut groups = DisjointSets::new(polys.len());
-    let mut first_at: FxHashMap<[u64; 3], u32> =
-        FxHashMap::with_capacity_and_hasher(polys.len(), Default::default());
+    let mut first_at: KeyedHashMap<[u64; 3], u32> =
+        KeyedHashMap::with_capacity_and_hasher(polys.len(), Default::default());
     for (i, p) in polys.iter().enumerate() {
         if near[i] {
             continue;
@@ -286,7 +291,7 @@ fn keep_far(polys: &[Polygon], near: &[bool], other: &Surface, keep: Label) -> V
 }
 
 /// The result when the operands cannot interact: one is empty or their boxes do not meet.
-fn disjoint(a: Solid, b: Solid, op: BoolOp, floor: f64) -> Solid {
+fn disjoint(a: Solid, b: Solid, op: BoolOp, floor: f64, lost: Option<PrecisionLoss>) -> Solid {
     match op {
         BoolOp::Union => {
             // Two parts of different scales: the finer tolerance serves both, but never below
@@ -308,9 +313,12 @@ fn disjoint(a: Solid, b: Solid, op: BoolOp, floor: f64) -> Solid {
             };
             let mut polygons = a.into_polygons();
             polygons.extend(b.into_polygons());
-            Solid::with_eps(polygons, eps)
+            Solid::with_eps(polygons, eps, lost)
         }
-        BoolOp::Intersection => Solid::empty(),
-        BoolOp::Difference => a,
+        BoolOp::Intersection => Solid::with_eps(Vec::new(), 0.0, lost),
+        BoolOp::Difference => {
+            let eps = a.carried_eps();
+            Solid::with_eps(a.into_polygons(), eps, lost)
+        }
     }
 }

@@ -19,7 +19,8 @@ pub use boolean::{BoolOp, ParseBoolOpError, boolean, boolean_with};
 pub use measure::{Containment, PointClassifier};
 pub use ops::boolean_all;
 
-use crate::geom::Tolerance;
+use crate::error::{Error, Result};
+use crate::geom::{Aabb, Tolerance};
 use crate::polygon::Polygon;
 
 /// A solid bounded by convex planar polygons whose normals point outward.
@@ -32,6 +33,34 @@ pub struct Solid {
     polygons: Vec<Polygon>,
     /// The plane-side epsilon of the boolean that made this solid; zero for an exact input.
     eps: f64,
+    /// The first boolean on the way to this solid that could not resolve the region its
+    /// operands met in (see [`Solid::check_precision`]).
+    lost: Option<PrecisionLoss>,
+}
+
+/// A boolean whose operands met in a region too small for the tolerance it had to use: the
+/// floor that the coordinates' magnitude sets, or one carried from an earlier, larger boolean,
+/// is more than [`Tolerance::PRECISION_LIMIT`] of the region's diagonal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct PrecisionLoss {
+    /// The diagonal of the region where the operands met.
+    pub(crate) region: f64,
+    /// The largest coordinate magnitude in it.
+    pub(crate) magnitude: f64,
+    /// The tolerance the boolean had to use.
+    pub(crate) eps: f64,
+}
+
+impl PrecisionLoss {
+    /// The loss, if a tolerance `tol` does not resolve `region`.
+    pub(crate) fn check(region: &Aabb, tol: Tolerance) -> Option<PrecisionLoss> {
+        let d = region.diagonal();
+        (!tol.resolves(d)).then(|| PrecisionLoss {
+            region: d,
+            magnitude: region.max_abs(),
+            eps: tol.eps(),
+        })
+    }
 }
 
 impl Solid {
@@ -45,11 +74,70 @@ impl Solid {
     /// [`Solid::from_mesh`] for input that needs checking.
     #[must_use]
     pub fn from_polygons(polygons: Vec<Polygon>) -> Self {
-        Solid { polygons, eps: 0.0 }
+        Solid {
+            polygons,
+            eps: 0.0,
+            lost: None,
+        }
     }
 
-    pub(crate) fn with_eps(polygons: Vec<Polygon>, eps: f64) -> Self {
-        Solid { polygons, eps }
+    pub(crate) fn with_eps(polygons: Vec<Polygon>, eps: f64, lost: Option<PrecisionLoss>) -> Self {
+        Solid {
+            polygons,
+            eps,
+            lost,
+        }
+    }
+
+    /// Whether this solid was made within the precision contract (the crate docs,
+    /// `# Precision`): every boolean on the way to it resolved the region where its operands
+    /// met to one part in 10⁵ ([`Tolerance::PRECISION_LIMIT`]), and a solid no boolean made is
+    /// resolved so at its own size and place.
+    ///
+    /// Booleans never fail, so a result past the limit is marked instead, and the mark passes to
+    /// every solid made from it; this is where it turns into an error. The command line and
+    /// [`crate::Scene::to_solid`] call it before writing anything.
+    ///
+    /// ```
+    /// use bspcsg::{Error, Solid};
+    /// use bspcsg::glam::DVec3;
+    ///
+    /// // Two unit cubes overlapping by half: exact at 10⁸ from the origin…
+    /// let at = |x: f64| Solid::cube(1.0)?.translate(DVec3::new(x, 0.0, 0.0));
+    /// let near = &at(1e8)? | &at(1e8 + 0.5)?;
+    /// assert!(near.check_precision().is_ok());
+    /// assert!((near.volume() - 1.5).abs() < 1e-6);
+    /// // …but at 10¹¹ a coordinate is only known to 1.5·10⁻⁵: refused, not silently wrong.
+    /// let far = &at(1e11)? | &at(1e11 + 0.5)?;
+    /// assert!(matches!(far.check_precision(), Err(Error::BeyondPrecision { .. })));
+    /// # Ok::<(), bspcsg::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::BeyondPrecision`] with the region, its distance from the origin and the
+    /// tolerance it needed.
+    pub fn check_precision(&self) -> Result<()> {
+        let lost = self.lost.or_else(|| {
+            if self.eps > 0.0 || self.is_empty() {
+                return None;
+            }
+            let b = self.bbox();
+            PrecisionLoss::check(&b, Tolerance::for_region(&b))
+        });
+        match lost {
+            None => Ok(()),
+            Some(l) => Err(Error::BeyondPrecision {
+                region: l.region,
+                magnitude: l.magnitude,
+                eps: l.eps,
+            }),
+        }
+    }
+
+    /// The precision loss this solid carries, if any.
+    pub(crate) fn precision_loss(&self) -> Option<PrecisionLoss> {
+        self.lost
     }
 
     /// The bounding polygons.

@@ -5,7 +5,7 @@ use glam::{DAffine3, DMat3, DQuat, DVec3};
 
 use super::Solid;
 use crate::error::{Error, Result};
-use crate::geom::{MAX_COORDINATE, Plane, euler_degrees};
+use crate::geom::{MAX_COORDINATE, Plane, Tolerance, euler_degrees};
 use crate::polygon::{Polygon, Vertices};
 
 impl Solid {
@@ -138,6 +138,7 @@ impl Solid {
         in_range(Solid {
             polygons,
             eps: self.eps * det.abs().cbrt(),
+            lost: self.lost,
         })
     }
 
@@ -154,13 +155,21 @@ impl Solid {
         Solid {
             polygons,
             eps: self.eps,
+            lost: self.lost,
         }
     }
 }
 
 /// The solid, or an error where a transform moved it beyond the supported range.
-fn in_range(solid: Solid) -> Result<Solid> {
+///
+/// A carried tolerance grows to the floor of the new place: vertices moved far from the origin
+/// are rounded to the precision of their new coordinates, which a tolerance made near the
+/// origin would not allow for.
+fn in_range(mut solid: Solid) -> Result<Solid> {
     let reach = solid.bbox().max_abs();
+    if solid.eps > 0.0 {
+        solid.eps = solid.eps.max(Tolerance::floor(reach));
+    }
     if reach > MAX_COORDINATE || !reach.is_finite() {
         Err(Error::param(
             "transform",

@@ -170,6 +170,23 @@ Examples:
         exit_codes!()
     ))]
     Check(CheckArgs),
+
+    /// Edit a scene in the browser: a live preview, a tree of nodes, save and export.
+    ///
+    /// Serves a single-page editor of SCENE (created on the first save when it does not exist;
+    /// default `untitled.json`) on 127.0.0.1 only, and prints its URL. The page previews the
+    /// scene by a WebGL2 ray marcher generated from it, validates every edit with the scene
+    /// reader's JSON-path messages, saves atomically, exports OBJ / STL / glTF / GLB by either
+    /// route and runs `check`. Saves and exports stay in SCENE's folder. Stop it with Ctrl-C.
+    #[command(after_help = concat!(
+        "Examples:
+  bspcsg edit examples/scenes/mechanical_part.json
+  bspcsg edit part.json --port 8080
+
+",
+        exit_codes!()
+    ))]
+    Edit(EditArgs),
 }
 
 #[derive(Args)]
@@ -182,7 +199,8 @@ pub(crate) struct BooleanArgs {
     pub(crate) output: OutputArgs,
 
     /// Go on with inputs that are not closed (open, non-manifold, inside out). The result is
-    /// then only as meaningful as the inputs: an open surface has no well-defined inside.
+    /// then only as meaningful as the inputs: an open surface has no well-defined inside; it
+    /// is written even where it is not closed (with a warning), which is otherwise refused.
     #[arg(long)]
     pub(crate) allow_open: bool,
 }
@@ -310,6 +328,17 @@ pub(crate) struct CheckArgs {
     /// SDF is hit, blue where only the mesh is, yellow where depths differ by more than T.
     #[arg(long, value_name = "DIFF.png")]
     pub(crate) image: Option<PathBuf>,
+}
+
+#[derive(Args)]
+pub(crate) struct EditArgs {
+    /// The scene document to edit (JSON; see docs/scene-format.md); it need not exist yet.
+    #[arg(default_value = "untitled.json")]
+    pub(crate) scene: PathBuf,
+
+    /// The port on 127.0.0.1 to serve on; 0 picks a free one.
+    #[arg(long, default_value_t = 8737)]
+    pub(crate) port: u16,
 }
 
 /// `--view` values.

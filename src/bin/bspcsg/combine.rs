@@ -6,7 +6,7 @@ use bspcsg::{BoolOp, FromMeshOptions, Material, MeshDefect, boolean_all, read_so
 
 use crate::cli::BooleanArgs;
 use crate::failure::Failure;
-use crate::output::{finish, output_target, protect_inputs};
+use crate::output::{Expect, finish, output_target, protect_inputs};
 use crate::progress::Progress;
 
 /// `union`, `intersection`, `difference`.
@@ -24,16 +24,19 @@ pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Re
     for (i, path) in args.inputs.iter().enumerate() {
         progress.step(format!("reading {}", path.display()));
         let solid = read_solid(path, &options).map_err(|e| {
-            // The flag helps with open or inside-out input only, and only if not given yet.
-            let hint = !args.allow_open
-                && matches!(
-                    e.mesh_defect(),
-                    Some(MeshDefect::NotClosed { .. } | MeshDefect::InsideOut { .. })
-                );
+            // The flag lets open or inside-out input in, and only helps if not given yet; an
+            // inside-out mesh is mostly one whose faces wind the wrong way.
+            let hint = match e.mesh_defect() {
+                _ if args.allow_open => None,
+                Some(MeshDefect::NotClosed { .. }) => Some(" (pass --allow-open to go on anyway)"),
+                Some(MeshDefect::InsideOut { .. }) => Some(
+                    " (reverse its faces' winding to make it a solid; --allow-open goes on \
+                     with it as it is)",
+                ),
+                _ => None,
+            };
             let mut f = Failure::from(e);
-            if hint {
-                f.message.push_str(" (pass --allow-open to go on anyway)");
-            }
+            f.message.push_str(hint.unwrap_or_default());
             f
         })?;
         // Source ids record which input each output triangle came from.
@@ -43,9 +46,15 @@ pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Re
     }
     progress.step(format!("combining {} solids", solids.len()));
     let solid = boolean_all(solids, op);
+    solid.check_precision()?;
     progress.step("repairing (welding, closing T-junctions)");
     let mesh = solid.to_mesh();
-    finish(out, format, &mesh, &materials, progress)
+    let expect = if args.allow_open {
+        Expect::Any
+    } else {
+        Expect::Closed
+    };
+    finish(out, format, &mesh, &materials, expect, progress)
 }
 
 /// The material that marks input `i`'s triangles: named after its file, coloured from a small

@@ -4,7 +4,7 @@ use bspcsg::{BakeOptions, Error, Mesh, Scene, TessellationOptions};
 
 use crate::cli::{ExportArgs, Via};
 use crate::failure::Failure;
-use crate::output::{finish, output_target};
+use crate::output::{Expect, finish, output_target};
 use crate::progress::Progress;
 
 /// `export`.
@@ -24,7 +24,14 @@ pub(crate) fn export(args: &ExportArgs, progress: &Progress) -> Result<(), Failu
     let scene = Scene::from_path(&args.scene).map_err(in_scene)?;
     let mesh =
         scene_mesh(&scene, args.via, args.tolerance, args.cell, progress).map_err(in_scene)?;
-    finish(out, format, &mesh, scene.materials(), progress)
+    finish(
+        out,
+        format,
+        &mesh,
+        scene.materials(),
+        Expect::Closed,
+        progress,
+    )
 }
 
 /// The scene's mesh by either route, as `export` makes it (also for `render` and `check`).

@@ -24,7 +24,9 @@ impl From<Error> for Failure {
     /// options or writing, and exits 1.
     fn from(e: Error) -> Self {
         let code = match e {
-            Error::InvalidMesh { .. } | Error::OverBudget { .. } => 2,
+            Error::InvalidMesh { .. }
+            | Error::OverBudget { .. }
+            | Error::BeyondPrecision { .. } => 2,
             _ => 1,
         };
         Failure {

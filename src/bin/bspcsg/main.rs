@@ -21,9 +21,11 @@ macro_rules! exit_codes {
      unknown extension, an invalid scene document, a glTF buffer URI that is not a regular
      file inside the document's folder); nothing is written
   2  invalid geometry: an input mesh that does not bound a solid (open, non-manifold,
-     inside out; --allow-open goes on anyway), or a result the output format cannot hold
-     (coordinates beyond float32); an input over the reader's budget (a glTF placing more
-     than 20 million triangles after instancing); nothing is written
+     inside out; --allow-open goes on anyway), a result that is not a closed 2-manifold
+     (booleans without --allow-open, export), a boolean beyond the precision contract
+     (parts too small for their distance from the origin), or a result the output format
+     cannot hold (coordinates beyond float32); an input over the reader's budget (a glTF
+     placing more than 20 million triangles after instancing); nothing is written
   3  check: the mesh disagrees with the scene (each failed measure is named with its
      value, its limit and the worst place)"
     };
@@ -33,6 +35,7 @@ mod check;
 mod cli;
 mod combine;
 mod convert;
+mod edit;
 mod export;
 mod failure;
 mod info;
@@ -66,6 +69,7 @@ fn main() -> ExitCode {
         Command::Export(args) => export::export(&args, &progress),
         Command::Render(args) => render::render(&args, &progress),
         Command::Check(args) => check::check(&args, &progress),
+        Command::Edit(args) => edit::edit(&args),
     };
     progress.finish();
     match result {

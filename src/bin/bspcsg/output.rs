@@ -64,17 +64,38 @@ pub(crate) fn remove_dirs(dirs: &[PathBuf]) {
     }
 }
 
-/// Writes the result and prints a summary, with a warning when the result is empty or not a
-/// closed 2-manifold (from inputs let in by `--allow-open` or `convert`, or a library fault).
+/// What the result must be before it is written.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Expect {
+    /// A closed 2-manifold: the inputs were (booleans of solids, scene exports). Anything else
+    /// is a fault, refused with exit 2 and nothing written.
+    Closed,
+    /// Anything (`convert`, or booleans of inputs let in by `--allow-open`): a result that is
+    /// not closed is written with a warning.
+    Any,
+}
+
+/// Writes the result and prints a summary, with a warning when the result is empty or (where
+/// that is allowed) not a closed 2-manifold.
 pub(crate) fn finish(
     out: &Path,
     format: Format,
     mesh: &Mesh,
     materials: &[Material],
+    expect: Expect,
     progress: &Progress,
 ) -> Result<(), Failure> {
     progress.step("checking the result");
     let report = mesh.report();
+    if expect == Expect::Closed && !mesh.is_empty() && !report.is_closed_manifold() {
+        return Err(Failure {
+            message: format!(
+                "the result is not a closed 2-manifold, so {} is not written: {report}",
+                out.display()
+            ),
+            code: 2,
+        });
+    }
     progress.step(format!("writing {}", out.display()));
     // Directories too appear only once the work has succeeded, and go again if the write fails.
     let made = make_parents(out)?;

@@ -9,9 +9,17 @@ use crate::mesh::Mesh;
 ///
 /// Half-edges `a→b` and `b→a` pair up as twins. Around an edge used by more than two triangles
 /// (solids touching along it), the triangles are sorted by angle and each `a→b` triangle pairs
-/// with its clockwise neighbour — the one across the solid's interior wedge. A vertex's corners
-/// linked through twins form fans; each fan gets its own vertex, so solids touching at an edge
-/// or a vertex become separate manifold shells.
+/// with a neighbour: by default the clockwise one, across the solid's interior wedge. A vertex's
+/// corners linked through twins form fans; each fan gets its own vertex, so solids touching at
+/// an edge or a vertex become separate manifold shells.
+///
+/// Pairing across the solid keeps two cubes that share an edge apart, but where the edge is
+/// where two *cavities* touch (a solid meeting itself along an edge whose ends lie in solid
+/// material) the fans at the edge's ends then close into one: both pairs of the edge would keep
+/// the same two vertices. For each connected chain of such edges the other pairing (across the
+/// empty wedges, as if the solid's pieces overlapped by a hair) is tried, and kept when it
+/// leaves fewer edges whose pairs share their vertices: the chain's vertices then split, every
+/// edge of the output is used by exactly two triangles.
 ///
 /// Also returns the end points of half-edges left without a twin: the cracks.
 pub(super) fn split_into_shells(
@@ -31,6 +39,8 @@ pub(super) fn split_into_shells(
     keyed.sort_unstable();
     let order: Vec<u32> = keyed.iter().map(|&(_, h)| h).collect();
     let mut twin: Vec<u32> = vec![u32::MAX; n];
+    // Edges used by more than two triangles, each as its half-edges sorted by angle.
+    let mut crowded: Vec<Vec<(u32, bool)>> = Vec::new();
     let mut i = 0;
     while i < n {
         let mut j = i + 1;
@@ -44,30 +54,77 @@ pub(super) fn split_into_shells(
                 twin[h2 as usize] = h1;
             }
         } else if group.len() > 2 {
-            pair_by_angle(&positions, &triangles, group, &mut twin);
+            crowded.push(around_edge(&positions, &triangles, group));
         }
         i = j;
     }
-    // Corner h sits at vertex from(h). Around that vertex, the corner of the previous
-    // half-edge's twin continues the fan.
-    let mut fans = DisjointSets::new(n);
-    for h in 0..n {
-        let prev = h / 3 * 3 + (h % 3 + 2) % 3;
-        let t = twin[prev];
-        if t != u32::MAX {
-            fans.union(h, t as usize);
+    let mut across_solid = vec![true; crowded.len()];
+    for (g, around) in crowded.iter().enumerate() {
+        pair_around(around, across_solid[g], &mut twin);
+    }
+    let mut corner_vertex = fan_vertices(&triangles, &twin);
+    if !crowded.is_empty() {
+        let pinched = pinched_edges(&crowded, &corner_vertex);
+        if pinched.iter().any(|&p| p > 0) {
+            let chains = chains_of(&crowded, &triangles);
+            let bad_chain: Vec<bool> = {
+                let mut bad = vec![false; crowded.len()];
+                for (g, &p) in pinched.iter().enumerate() {
+                    if p > 0 {
+                        bad[chains[g]] = true;
+                    }
+                }
+                bad
+            };
+            let mut flipped_twin = twin.clone();
+            for (g, around) in crowded.iter().enumerate() {
+                if bad_chain[chains[g]] {
+                    across_solid[g] = false;
+                    for &(h, _) in around {
+                        flipped_twin[h as usize] = u32::MAX;
+                    }
+                }
+            }
+            for (g, around) in crowded.iter().enumerate() {
+                if !across_solid[g] {
+                    pair_around(around, false, &mut flipped_twin);
+                }
+            }
+            let flipped_vertex = fan_vertices(&triangles, &flipped_twin);
+            let flipped_pinched = pinched_edges(&crowded, &flipped_vertex);
+            // Per chain: how many pinched edges each pairing leaves.
+            let mut score = vec![(0usize, 0usize); crowded.len()];
+            for g in 0..crowded.len() {
+                score[chains[g]].0 += pinched[g];
+                score[chains[g]].1 += flipped_pinched[g];
+            }
+            let keep_flip: Vec<bool> = (0..crowded.len())
+                .map(|c| bad_chain[c] && score[c].1 < score[c].0)
+                .collect();
+            if keep_flip.iter().any(|&k| k) {
+                for (g, around) in crowded.iter().enumerate() {
+                    if !keep_flip[chains[g]] {
+                        for &(h, _) in around {
+                            flipped_twin[h as usize] = twin[h as usize];
+                        }
+                    }
+                }
+                twin = flipped_twin;
+                corner_vertex = fan_vertices(&triangles, &twin);
+            }
         }
     }
-    let mut vertex_of_fan: Vec<u32> = vec![u32::MAX; n];
+    // One output vertex per fan, numbered in order of first use.
+    let mut renumber: Vec<u32> = vec![u32::MAX; n];
     let mut out_positions = Vec::with_capacity(positions.len());
     let mut out_triangles = vec![[0u32; 3]; triangles.len()];
     for h in 0..n {
-        let root = fans.find(h);
-        if vertex_of_fan[root] == u32::MAX {
-            vertex_of_fan[root] = out_positions.len() as u32;
+        let fan = corner_vertex[h] as usize;
+        if renumber[fan] == u32::MAX {
+            renumber[fan] = out_positions.len() as u32;
             out_positions.push(positions[from(h) as usize]);
         }
-        out_triangles[h / 3][h % 3] = vertex_of_fan[root];
+        out_triangles[h / 3][h % 3] = renumber[fan];
     }
     let cracks = (0..n)
         .filter(|&h| twin[h] == u32::MAX)
@@ -81,8 +138,71 @@ pub(super) fn split_into_shells(
     (mesh, cracks)
 }
 
-/// Pairs the half-edges of a non-manifold edge by the angle of their triangles about it.
-fn pair_by_angle(positions: &[DVec3], triangles: &[[u32; 3]], group: &[u32], twin: &mut [u32]) {
+/// For each corner (half-edge `h` sits at vertex `from(h)`), the fan it belongs to, named by
+/// its root corner. Around a vertex, the corner of the previous half-edge's twin continues the
+/// fan.
+fn fan_vertices(triangles: &[[u32; 3]], twin: &[u32]) -> Vec<u32> {
+    let n = triangles.len() * 3;
+    let mut fans = DisjointSets::new(n);
+    for h in 0..n {
+        let prev = h / 3 * 3 + (h % 3 + 2) % 3;
+        let t = twin[prev];
+        if t != u32::MAX {
+            fans.union(h, t as usize);
+        }
+    }
+    (0..n).map(|h| fans.find(h) as u32).collect()
+}
+
+/// For each crowded edge, how many of its half-edges share both output vertices with another
+/// of its half-edges that is not their twin: the pairs that splitting the fans did not part.
+fn pinched_edges(crowded: &[Vec<(u32, bool)>], corner_vertex: &[u32]) -> Vec<usize> {
+    let ends = |h: usize| {
+        let next = h / 3 * 3 + (h % 3 + 1) % 3;
+        let (a, b) = (corner_vertex[h], corner_vertex[next]);
+        (a.min(b), a.max(b))
+    };
+    crowded
+        .iter()
+        .map(|around| {
+            let mut keys: Vec<(u32, u32)> = around.iter().map(|&(h, _)| ends(h as usize)).collect();
+            keys.sort_unstable();
+            let mut pinched = 0;
+            let mut k = 0;
+            while k < keys.len() {
+                let mut m = k + 1;
+                while m < keys.len() && keys[m] == keys[k] {
+                    m += 1;
+                }
+                if m - k > 2 {
+                    pinched += m - k;
+                }
+                k = m;
+            }
+            pinched
+        })
+        .collect()
+}
+
+/// For each crowded edge, the chain it belongs to (named by its first edge): crowded edges
+/// sharing an end vertex are one chain, as the pairing of one decides the fans at that vertex.
+fn chains_of(crowded: &[Vec<(u32, bool)>], triangles: &[[u32; 3]]) -> Vec<usize> {
+    let mut sets = DisjointSets::new(crowded.len());
+    let mut first_at: crate::hash::FxHashMap<u32, usize> = Default::default();
+    for (g, around) in crowded.iter().enumerate() {
+        let h = around[0].0 as usize;
+        let t = triangles[h / 3];
+        for v in [t[h % 3], t[(h % 3 + 1) % 3]] {
+            let first = *first_at.entry(v).or_insert(g);
+            sets.union(g, first);
+        }
+    }
+    (0..crowded.len()).map(|g| sets.find(g)).collect()
+}
+
+/// The half-edges of a crowded edge sorted by the angle of their triangles about it, each with
+/// whether it runs the same way as the first.
+fn around_edge(positions: &[DVec3], triangles: &[[u32; 3]], group: &[u32]) -> Vec<(u32, bool)> {
     let h0 = group[0] as usize;
     let (a, b) = (
         triangles[h0 / 3][h0 % 3],
@@ -92,7 +212,6 @@ fn pair_by_angle(positions: &[DVec3], triangles: &[[u32; 3]], group: &[u32], twi
     let axis = (pb - pa).normalize_or_zero();
     let u = axis.any_orthonormal_vector();
     let w = axis.cross(u);
-    // (angle, half-edge, runs a→b)
     let mut around: Vec<(f64, u32, bool)> = group
         .iter()
         .map(|&h| {
@@ -103,14 +222,25 @@ fn pair_by_angle(positions: &[DVec3], triangles: &[[u32; 3]], group: &[u32], twi
         })
         .collect();
     around.sort_by(|x, y| x.0.total_cmp(&y.0));
+    around.into_iter().map(|(_, h, f)| (h, f)).collect()
+}
+
+/// Pairs the half-edges of a crowded edge: each forward one with its clockwise neighbour (across
+/// the solid's interior wedge) when `across_solid`, else with its counter-clockwise one.
+fn pair_around(around: &[(u32, bool)], across_solid: bool, twin: &mut [u32]) {
     let m = around.len();
     for k in 0..m {
-        let (_, h, forward) = around[k];
+        let (h, forward) = around[k];
         if !forward {
             continue;
         }
         // The interior of an a→b triangle lies clockwise (decreasing angle) of it.
-        let (_, partner, partner_forward) = around[(k + m - 1) % m];
+        let other = if across_solid {
+            (k + m - 1) % m
+        } else {
+            (k + 1) % m
+        };
+        let (partner, partner_forward) = around[other];
         if !partner_forward && twin[partner as usize] == u32::MAX {
             twin[h as usize] = partner;
             twin[partner as usize] = h;

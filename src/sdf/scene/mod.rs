@@ -65,6 +65,8 @@ pub struct Scene {
     profile: RenderProfile,
     camera: Option<SceneCamera>,
     lights: Option<Vec<Light>>,
+    /// The JSON path of each primitive's node, in evaluation order.
+    primitive_paths: Vec<String>,
 }
 
 impl Scene {
@@ -156,6 +158,14 @@ impl Scene {
     #[must_use]
     pub fn bbox(&self) -> Aabb {
         self.bound.bbox
+    }
+
+    /// The JSON path of each primitive's node (`$.tree.children[1]`), extrusions and
+    /// revolutions included, in evaluation order: the primitives of any subtree are a
+    /// contiguous run of this list, in document order.
+    #[must_use]
+    pub fn primitive_paths(&self) -> &[String] {
+        &self.primitive_paths
     }
 
     /// Number of primitives (leaves) in the scene.

@@ -41,6 +41,8 @@ pub(super) struct Parser {
     material_index: HashMap<String, u32>,
     materials: Vec<Material>,
     has_table: bool,
+    /// The JSON path of every leaf node (primitives, extrusions, revolutions), by node id.
+    leaf_paths: HashMap<NodeId, String>,
 }
 
 impl Parser {
@@ -62,7 +64,13 @@ impl Parser {
         };
         let program = Program::compile(&self.tree, root, Frame::WORLD)?;
         let bound = program.bound();
+        let primitive_paths = program
+            .leaves
+            .iter()
+            .map(|l| self.leaf_paths.remove(&l.node).unwrap_or_default())
+            .collect();
         Ok(Scene {
+            primitive_paths,
             tree: self.tree,
             root,
             program,
@@ -239,7 +247,11 @@ impl Parser {
         let mut root = None;
         while let Some(w) = work.pop() {
             let (node, children) = self.node(w.value, &w.path, w.scope)?;
+            let is_leaf = matches!(node.kind, NodeKind::Leaf { .. });
             let id = self.tree.push(node);
+            if is_leaf {
+                self.leaf_paths.insert(id, w.path.clone());
+            }
             match w.parent {
                 Some(p) => {
                     if let NodeKind::Op { children, .. } = &mut self.tree.nodes[p as usize].kind {

@@ -1,0 +1,170 @@
+//! Unions of unit boxes on an integer grid: exact volumes, vertices exactly on the grid, closed
+//! 2-manifolds, and boxes that touch along an edge split into separate sheets there.
+
+mod common;
+
+use std::collections::HashSet;
+
+use bspcsg::glam::DVec3;
+use bspcsg::{Mesh, Solid};
+use common::{assert_closed_manifold, obj_box_mesh};
+
+/// `count` cells of an `n`³ grid drawn by a fixed linear congruential generator (repeats allowed).
+fn random_cells(count: usize, n: u64, seed: u64) -> Vec<[i64; 3]> {
+    let mut state = seed;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((state >> 33) % n) as i64
+    };
+    (0..count).map(|_| [next(), next(), next()]).collect()
+}
+
+/// Unit boxes filling `cells`: the crate's cuboids (one quad per face) or OBJ-style boxes of
+/// 12 triangles.
+fn unit_boxes(cells: &[[i64; 3]], triangulated: bool) -> Vec<Solid> {
+    cells
+        .iter()
+        .map(|c| {
+            let min = DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64);
+            if triangulated {
+                Solid::from_mesh(&obj_box_mesh(min, min + DVec3::ONE)).unwrap()
+            } else {
+                Solid::cube(1.0)
+                    .unwrap()
+                    .translate(min + DVec3::splat(0.5))
+                    .unwrap()
+            }
+        })
+        .collect()
+}
+
+/// The largest distance of a vertex coordinate from the nearest integer.
+fn off_grid(mesh: &Mesh) -> f64 {
+    mesh.positions
+        .iter()
+        .flat_map(|p| p.to_array())
+        .map(|x| (x - x.round()).abs())
+        .fold(0.0, f64::max)
+}
+
+/// The union's mesh is a closed 2-manifold of exactly the number of distinct cells, every
+/// vertex on the grid; returns its shell count and genus.
+fn assert_exact_union(cells: &[[i64; 3]], triangulated: bool, what: &str) -> (usize, u64) {
+    let distinct: HashSet<[i64; 3]> = cells.iter().copied().collect();
+    let expected = distinct.len() as f64;
+    let union = Solid::union_all(unit_boxes(cells, triangulated));
+    let mesh = union.to_mesh();
+    let report = assert_closed_manifold(&mesh, what);
+    assert_eq!(report.needles, 0, "{what}: {report}");
+    assert!(
+        (union.volume() - expected).abs() <= 1e-12 * expected,
+        "{what}: solid volume {} for {expected}",
+        union.volume()
+    );
+    assert!(
+        (report.volume - expected).abs() <= 1e-12 * expected,
+        "{what}: mesh volume {} for {expected}",
+        report.volume
+    );
+    assert_eq!(off_grid(&mesh), 0.0, "{what}: a vertex left the grid");
+    (report.shells.len(), report.genus.unwrap())
+}
+
+/// Eight boxes on the black cells of a 4×2×2 checkerboard: every pair of neighbours touches
+/// along an edge only. Each edge is split into two (its vertices duplicated), so the mesh is
+/// eight separate cubes.
+#[test]
+fn eight_boxes_touching_along_edges_come_out_as_eight_cubes() {
+    let cells: Vec<[i64; 3]> = (0..4)
+        .flat_map(|x| (0..2).flat_map(move |y| (0..2).map(move |z| [x, y, z])))
+        .filter(|c| (c[0] + c[1] + c[2]) % 2 == 0)
+        .collect();
+    assert_eq!(cells.len(), 8);
+    for triangulated in [false, true] {
+        let (shells, genus) = assert_exact_union(&cells, triangulated, "checkerboard");
+        assert_eq!((shells, genus), (8, 0));
+    }
+}
+
+/// The other side of the same edges: a 4×2×2 block minus the checkerboard's eight boxes. The
+/// cavities touch along edges whose ends lie in solid material, so pairing the faces across
+/// the solid would leave both sheets on one pair of vertices; they are paired across the
+/// cavities instead and the edge's vertices split.
+#[test]
+fn a_block_minus_eight_boxes_touching_along_edges_is_manifold() {
+    let cells: Vec<[i64; 3]> = (0..4)
+        .flat_map(|x| (0..2).flat_map(move |y| (0..2).map(move |z| [x, y, z])))
+        .filter(|c| (c[0] + c[1] + c[2]) % 2 == 1)
+        .collect();
+    for triangulated in [false, true] {
+        let block = Solid::from_mesh(&obj_box_mesh(
+            DVec3::new(-1.0, -1.0, -1.0),
+            DVec3::new(5.0, 3.0, 3.0),
+        ))
+        .unwrap();
+        let holes = Solid::union_all(unit_boxes(&cells, triangulated));
+        let result = block.difference(&holes);
+        let mesh = result.to_mesh();
+        let report = assert_closed_manifold(&mesh, "block minus checkerboard");
+        assert_eq!(report.volume, 6.0 * 4.0 * 4.0 - 8.0, "{report}");
+        assert_eq!(off_grid(&mesh), 0.0);
+    }
+}
+
+/// Eight random grid boxes (repeats and edge contacts included), in both box forms.
+#[test]
+fn unions_of_eight_random_grid_boxes_are_exact() {
+    for seed in 1..=20 {
+        let cells = random_cells(8, 3, seed);
+        for triangulated in [false, true] {
+            assert_exact_union(&cells, triangulated, &format!("seed {seed}"));
+        }
+    }
+}
+
+/// A thousand boxes in a 12³ grid (748 distinct cells): exact volume, every vertex on the
+/// grid. Before the BSP's cell planes had to leave a polygon whole on each side, a cascade of
+/// planes at 2 + 2⁻ᵏ cut slivers thinner than the weld: boundary edges, inside-out shells,
+/// vertices 1.6e-10 off the grid.
+#[test]
+fn a_thousand_grid_boxes_union_exactly() {
+    let cells = random_cells(1000, 12, 1);
+    for triangulated in [false, true] {
+        let (shells, genus) = assert_exact_union(&cells, triangulated, "1000 boxes");
+        assert_eq!((shells, genus), (55, 23));
+    }
+    let dense = random_cells(1000, 10, 3);
+    let (_, _) = assert_exact_union(&dense, false, "1000 boxes in 10³");
+}
+
+/// A 32×16 and a 64×32 sphere minus the same sphere turned by 1e-4° about a skew axis: every
+/// pair of matching facets crosses at 1.7e-6 rad, leaving slivers up to 1.7e-7 thick. The
+/// result must be closed with a volume ≥ 0, in bounded time. Open: each operand's facet is
+/// cut where the other's plane crosses it, the two cut lines landing a rounding error over the
+/// angle apart (6e-11, beyond the 3e-11 weld); 32×16 leaves 19 boundary edges and 4 flat
+/// shells in 0.5 s, 64×32 197 boundary edges in 3 s, and 128×64 a negative solid volume
+/// (−5.6e-7) in 14 s (see the closing note of issue 11).
+#[test]
+#[ignore = "open: near-coplanar facets crossing at 1.7e-6 rad leave slits and flat shells"]
+fn sphere_minus_itself_turned_a_ten_thousandth_of_a_degree() {
+    for (segments, rings) in [(32, 16), (64, 32)] {
+        let a = Solid::sphere(1.0, segments, rings).unwrap();
+        let b = a
+            .clone()
+            .rotate_axis_angle(DVec3::new(0.3, 1.0, 0.2), 1e-4)
+            .unwrap();
+        let start = std::time::Instant::now();
+        let result = a.difference(&b);
+        let mesh = result.to_mesh();
+        let elapsed = start.elapsed();
+        let what = format!("{segments}×{rings}");
+        let report = assert_closed_manifold(&mesh, &what);
+        assert!(
+            result.volume() >= 0.0 && report.volume >= 0.0,
+            "{what}: {report}"
+        );
+        assert!(elapsed.as_secs_f64() < 2.0, "{what}: {elapsed:?}");
+    }
+}
