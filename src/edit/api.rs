@@ -13,7 +13,7 @@ use std::time::Instant;
 use glam::DVec3;
 use serde_json::{Map, Value, json};
 
-use super::glsl::fragment_shader;
+use super::glsl::fragment_shader_with;
 use crate::error::{Error, Result};
 use crate::io::{Format, write_file_atomically, write_mesh_as};
 use crate::mesh::Mesh;
@@ -534,14 +534,18 @@ fn side(query: &str, key: &str, default: u32) -> std::result::Result<u32, Respon
     Ok(default)
 }
 
-/// `POST /api/shader?w=W&h=H`: the body is a scene document; the answer is the fragment
+/// `POST /api/shader?w=W&h=H[&cull=1]`: the body is a scene document; the answer is the fragment
 /// shader, each leaf's JSON path and the camera `bspcsg render` would use at W × H.
 fn shader(body: &[u8], query: &str) -> Answer {
     let (w, h) = (side(query, "w", 800)?, side(query, "h", 600)?);
+    // `cull=1` skips primitives by their bounding spheres where they cannot matter. Off by
+    // default: in software GL (SwiftShader, which runs branches of neighbouring pixels
+    // together) it measured 30 % slower on the mechanical example.
+    let cull = query.split('&').any(|kv| kv == "cull=1");
     let v: Value =
         serde_json::from_slice(body).map_err(|e| bad("$", format!("$: not valid JSON: {e}")))?;
     let scene = Scene::from_json_value(&v).map_err(|e| from_error(e, ""))?;
-    let shader = fragment_shader(&scene);
+    let shader = fragment_shader_with(&scene, cull);
     let camera = Camera::for_scene(&scene, View::Iso, (w, h)).unwrap_or_else(|_| {
         // Nothing to frame (an empty scene): a plain view of the unit box.
         Camera::look_at(

@@ -10,13 +10,14 @@
 // 3. Export (GLB, BSP route) must download a closed mesh; `check` must pass.
 // 4. The mechanical example: preview frames per second at 800×600 in software GL, and the
 //    server's bake (marching cubes) and BSP-route export times, which must be under 1 s.
+// 5. Every example scene: its shader's frame against `bspcsg render` of the file.
 //
 // Pixel tolerance of step 2, in 8-bit sRGB levels over the 400×300 image: mean absolute
 // difference per channel ≤ 2, and at most 1.5 % of pixels differing by more than 48 in any
 // channel. The GPU marches in float32, the CPU in float64, so rays that graze a silhouette or an
 // edge can land on the other side of it: those pixels differ a lot, but there are few of them.
 import { spawn, execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, writeFileSync, copyFileSync, mkdirSync } from 'node:fs';
+import { mkdtempSync, readFileSync, readdirSync, writeFileSync, copyFileSync, mkdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { chromium } from 'playwright-core';
@@ -41,6 +42,7 @@ const watchdog = setTimeout(() => {
 }, 150_000);
 
 const servers = [];
+const errors = [];
 function serve(scene) {
   return new Promise((ok, fail) => {
     const p = spawn(bin, ['edit', scene, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
@@ -103,7 +105,6 @@ async function editScene(browser) {
   const scene = join(scratch, 'part.json');
   const url = await serve(scene);
   const page = await browser.newPage({ viewport: { width: 1500, height: 900 }, acceptDownloads: true });
-  const errors = [];
   page.on('pageerror', (e) => errors.push(e.message));
   await page.goto(url);
   await page.waitForSelector('#tree');
@@ -147,6 +148,7 @@ async function editScene(browser) {
   await page.click('#save');
   await page.waitForFunction(() => /saved/.test(document.getElementById('message').textContent));
   const saved = JSON.parse(readFileSync(scene, 'utf8'));
+  check((await page.textContent('#log')).includes('saved part.json'), 'the log records the save');
   const sub = saved.tree.children[0];
   check(saved.tree.op === 'union' && saved.tree.children.length === 1, 'saved: one node under the root union');
   check(sub.op === 'subtract' && sub.children.length === 2, 'saved: a subtraction of two nodes');
@@ -164,9 +166,19 @@ async function editScene(browser) {
     window.editor.preview.selection = [-1, -1];
     window.editor.preview.frame();
   });
-  const cpuPng = join(shots, 'editor-cpu.png');
+  const cmp = await compareWithCpu(page, scene, join(shots, 'editor-cpu.png'));
+  writeFileSync(join(shots, 'editor-gpu.png'), Buffer.from(cmp.gpu.split(',')[1], 'base64'));
+  console.log(`preview vs CPU render: mean |diff| ${cmp.mean.toFixed(3)} levels, ${(100 * cmp.outliers).toFixed(3)} % pixels > ${OUTLIER_LEVEL}, object covers ${(100 * cmp.covered).toFixed(1)} %`);
+  check(cmp.covered > 0.05, 'the CPU render shows the part');
+  check(cmp.mean <= MEAN_LIMIT && cmp.outliers <= OUTLIER_LIMIT, 'the GPU preview matches the CPU render within tolerance');
+  await exportAndCheck(page);
+  await page.close();
+}
+
+// The canvas (400×300) against `bspcsg render SCENE --size 400x300`.
+async function compareWithCpu(page, scene, cpuPng) {
   execFileSync(bin, ['--quiet', 'render', scene, '-o', cpuPng, '--size', '400x300']);
-  const cmp = await page.evaluate(async (cpu) => {
+  return page.evaluate(async (cpu) => {
     const img = new Image();
     img.src = `data:image/png;base64,${cpu}`;
     await img.decode();
@@ -195,11 +207,9 @@ async function editScene(browser) {
     }
     return { mean: sum / (w * h * 3), outliers: outliers / (w * h), covered: hit / (w * h), gpu: document.getElementById('preview').toDataURL('image/png') };
   }, readFileSync(cpuPng).toString('base64'));
-  writeFileSync(join(shots, 'editor-gpu.png'), Buffer.from(cmp.gpu.split(',')[1], 'base64'));
-  console.log(`preview vs CPU render: mean |diff| ${cmp.mean.toFixed(3)} levels, ${(100 * cmp.outliers).toFixed(3)} % pixels > ${OUTLIER_LEVEL}, object covers ${(100 * cmp.covered).toFixed(1)} %`);
-  check(cmp.covered > 0.05, 'the CPU render shows the part');
-  check(cmp.mean <= MEAN_LIMIT && cmp.outliers <= OUTLIER_LIMIT, 'the GPU preview matches the CPU render within tolerance');
+}
 
+async function exportAndCheck(page) {
   // Export: a GLB by the BSP route, downloaded, closed.
   await page.selectOption('#export-format', 'glb');
   await page.selectOption('#export-via', 'bsp');
@@ -213,14 +223,45 @@ async function editScene(browser) {
   const checked = await page.textContent('#report');
   check(/PASS/.test(checked), `check: ${checked.split('\n')[0]}`);
 
+  // The mesh view: the server's mesh with its report.
+  await page.selectOption('#view-mode', 'mesh');
+  await page.waitForFunction(() => /triangles/.test(document.getElementById('mesh-info').textContent), null, { timeout: 30_000 });
+  const meshInfo = await page.textContent('#mesh-info');
+  check(/closed manifold/.test(meshInfo), `mesh view: ${meshInfo}`);
+  await page.screenshot({ path: join(shots, 'editor-mesh.png') });
+  await page.selectOption('#view-mode', 'preview');
+
+  // Selecting the sphere tints its leaf: the frame changes where the sphere decides the surface.
+  const tinted = await page.evaluate(async () => {
+    const gl = window.editor.preview.gl;
+    const grab = () => {
+      window.editor.preview.frame();
+      const px = new Uint8Array(400 * 300 * 4);
+      gl.readPixels(0, 0, 400, 300, gl.RGBA, gl.UNSIGNED_BYTE, px);
+      return px;
+    };
+    window.editor.preview.selection = [-1, -1];
+    const plain = grab();
+    window.editor.preview.selection = [1, 2];
+    const lit = grab();
+    let changed = 0, orange = 0;
+    for (let i = 0; i < plain.length; i += 4) {
+      if (plain[i] !== lit[i] || plain[i + 1] !== lit[i + 1] || plain[i + 2] !== lit[i + 2]) {
+        changed++;
+        if (lit[i] > lit[i + 2]) orange++;
+      }
+    }
+    return { changed: changed / (400 * 300), orange };
+  });
+  check(tinted.changed > 0.02 && tinted.orange > 0.9 * tinted.changed * 400 * 300, `the selected sphere is highlighted (${(100 * tinted.changed).toFixed(1)} % of pixels tinted)`);
+  await page.click('.node[data-path="$.tree.children[0].children[1]"]');
+  const leaves = await page.evaluate(() => window.editor.preview.selection);
+  check(leaves[0] === 1 && leaves[1] === 2, 'clicking the sphere selects its leaf (1) in the shader');
+
   // A picture of the editor with the sphere selected (highlighted), for the README.
   await page.selectOption('#preview-size', 'fit');
-  n = await previews(page);
-  await page.click('.node[data-path="$.tree.children[0].children[1]"]');
   await page.waitForTimeout(300);
   await page.screenshot({ path: join(shots, 'editor.png') });
-  check(errors.length === 0, `no page errors ${errors.join('; ')}`);
-  await page.close();
 }
 
 async function measureMechanical(browser) {
@@ -233,10 +274,54 @@ async function measureMechanical(browser) {
   const n = await previews(page);
   await page.selectOption('#preview-size', '800x600');
   await nextPreview(page, n);
-  const fps = await page.evaluate(() => window.editor.measureFps(10));
-  console.log(`mechanical_part preview at ${fps.width}×${fps.height}: ${fps.fps.toFixed(2)} fps (${fps.ms_per_frame.toFixed(1)} ms a frame, software GL)`);
+  // Frames with and without the bounding-sphere skipping of primitives, alternating, so that
+  // the machine's load weighs on both alike.
+  const shaderWith = async (cull) => page.evaluate(async (cull) => {
+    const doc = window.editor.state.doc;
+    const r = await fetch(`/api/shader?w=800&h=600${cull ? '&cull=1' : ''}`, {
+      method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(doc),
+    });
+    window.editor.preview.setShader((await r.json()).glsl);
+  }, cull);
+  const times = { true: [], false: [] };
+  for (let round = 0; round < 3; round++) {
+    for (const cull of [true, false]) {
+      await shaderWith(cull);
+      times[cull].push((await page.evaluate(() => window.editor.measureFps(4))).ms_per_frame);
+    }
+  }
+  const median = (v) => [...v].sort((a, b) => a - b)[Math.floor(v.length / 2)];
+  const fps = { fps: 1000 / median(times.false), width: 800, height: 600 };
+  await shaderWith(false);
+  const drag = await page.evaluate(() => window.editor.measureFps(4, 0.5));
+  console.log(`mechanical_part preview at 800×600 in software GL: ${fps.fps.toFixed(2)} fps (median ${median(times.false).toFixed(0)} ms a frame; ${median(times.true).toFixed(0)} ms skipping primitives by bounding spheres); while dragging (half resolution, scaled up) ${drag.fps.toFixed(2)} fps`);
   check(fps.fps >= 1, 'the preview renders at least one frame a second in software GL');
   await page.screenshot({ path: join(shots, 'editor-mechanical.png') });
+
+  // Every example scene: the shader generated from it against the CPU render of its file (their
+  // cameras, lights, materials, rotations, smooth blends, extrusions and revolutions).
+  const before = await previews(page);
+  await page.selectOption('#preview-size', '400x300');
+  await nextPreview(page, before);
+  for (const name of readdirSync('examples/scenes').filter((f) => f.endsWith('.json')).sort()) {
+    const file = join('examples/scenes', name);
+    await page.evaluate(async (doc) => {
+      const r = await fetch('/api/shader?w=400&h=300', {
+        method: 'POST', headers: { 'Content-Type': 'application/json' }, body: doc,
+      });
+      const body = await r.json();
+      window.editor.state.autoFrame = false;
+      window.editor.setCamera(body.camera);
+      window.editor.preview.selection = [-1, -1];
+      window.editor.preview.setShader(body.glsl);
+      window.editor.preview.frame();
+    }, readFileSync(file, 'utf8'));
+    const cmp = await compareWithCpu(page, file, join(shots, `example-cpu-${name}.png`));
+    writeFileSync(join(shots, `example-gpu-${name}.png`), Buffer.from(cmp.gpu.split(',')[1], 'base64'));
+    console.log(`${name}: preview vs CPU render: mean |diff| ${cmp.mean.toFixed(3)} levels, ${(100 * cmp.outliers).toFixed(3)} % pixels > ${OUTLIER_LEVEL}`);
+    check(cmp.covered > 0.05 && cmp.mean <= MEAN_LIMIT && cmp.outliers <= OUTLIER_LIMIT, `${name}: the GPU preview matches the CPU render within tolerance`);
+  }
+  check(errors.length === 0, `no page errors ${errors.join('; ')}`);
   const document = JSON.parse(readFileSync(scene, 'utf8'));
   for (const via of ['sdf', 'bsp']) {
     const t0 = performance.now();
@@ -266,4 +351,7 @@ main()
   .finally(() => {
     for (const s of servers) s.kill();
     clearTimeout(watchdog);
+    // The scratch folder goes, except after a failure when it holds the pictures.
+    if (process.exitCode && shots === scratch) console.error(`pictures kept in ${scratch}`);
+    else rmSync(scratch, { recursive: true, force: true });
   });

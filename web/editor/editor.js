@@ -13,6 +13,7 @@ const state = {
   at: -1,
   selected: null, // path (array) of the selected node
   marked: [], // paths of Ctrl-clicked siblings
+  notes: [], // saves and exports, each after history entry `after`
   valid: false,
   leafPaths: [],
   serverCamera: null,
@@ -56,6 +57,7 @@ async function post(url, body) {
 // ---- Actions and undo -----------------------------------------------------------------------
 function record(label) {
   state.history.length = state.at + 1;
+  state.notes = state.notes.filter((n) => n.after <= state.at);
   state.history.push({ label, json: JSON.stringify(state.doc), time: new Date() });
   state.at = state.history.length - 1;
   changed();
@@ -500,6 +502,12 @@ function renderLog() {
     if (i > state.at) li.className = 'undone';
     if (i === state.at) li.className = 'current';
     el.appendChild(li);
+    for (const n of state.notes.filter((n) => n.after === i)) {
+      const note = document.createElement('li');
+      note.textContent = `${n.time.toLocaleTimeString()} ${n.text}`;
+      note.className = 'note';
+      el.appendChild(note);
+    }
   });
   el.scrollTop = el.scrollHeight;
   $('undo').disabled = state.at <= 0;
@@ -606,7 +614,7 @@ function viewMoved() {
   state.camera.exactEye = null;
   // Up stays Y while orbiting (a top view's -Z up would flip).
   state.camera.up = [0, 1, 0];
-  if (state.viewMode === 'mesh') meshView.draw(); else preview.draw();
+  if (state.viewMode === 'mesh') meshView.draw(); else preview.drawMoving();
 }
 function attachControls(canvas) {
   let drag = null;
@@ -727,14 +735,30 @@ const preview = {
     gl.clearColor(0.07, 0.07, 0.08, 1);
     gl.clear(gl.COLOR_BUFFER_BIT);
   },
-  // One frame (also what measureFps times).
-  frame() {
+  // One frame (also what measureFps times). With `scale` < 1 it is marched at that fraction
+  // of the resolution into a texture and scaled up: what dragging the view shows.
+  frame(scale = 1) {
     const gl = this.gl;
     if (!gl || !this.program || !state.camera) return;
     const c = state.camera, u = this.uniforms;
-    gl.viewport(0, 0, this.canvas.width, this.canvas.height);
+    const W = this.canvas.width, H = this.canvas.height;
+    const w = Math.max(1, Math.round(W * scale)), h = Math.max(1, Math.round(H * scale));
+    if (scale < 1) {
+      if (!this.fbo || this.fboSize !== `${w}x${h}`) {
+        if (this.fbo) { gl.deleteFramebuffer(this.fbo); gl.deleteRenderbuffer(this.rbo); }
+        this.fbo = gl.createFramebuffer();
+        this.rbo = gl.createRenderbuffer();
+        gl.bindRenderbuffer(gl.RENDERBUFFER, this.rbo);
+        gl.renderbufferStorage(gl.RENDERBUFFER, gl.RGBA8, w, h);
+        gl.bindFramebuffer(gl.FRAMEBUFFER, this.fbo);
+        gl.framebufferRenderbuffer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.RENDERBUFFER, this.rbo);
+        this.fboSize = `${w}x${h}`;
+      }
+      gl.bindFramebuffer(gl.FRAMEBUFFER, this.fbo);
+    }
+    gl.viewport(0, 0, w, h);
     gl.useProgram(this.program);
-    gl.uniform2f(u.uResolution, this.canvas.width, this.canvas.height);
+    gl.uniform2f(u.uResolution, w, h);
     gl.uniform3fv(u.uEye, cameraEye());
     gl.uniform3fv(u.uTarget, c.target);
     gl.uniform3fv(u.uUp, c.up);
@@ -743,6 +767,25 @@ const preview = {
     gl.uniform1i(u.uSelLo, this.selection[0]);
     gl.uniform1i(u.uSelHi, this.selection[1]);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
+    if (scale < 1) {
+      gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.fbo);
+      gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
+      gl.blitFramebuffer(0, 0, w, h, 0, 0, W, H, gl.COLOR_BUFFER_BIT, gl.LINEAR);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    }
+  },
+  // While the view moves: half resolution now, full resolution once it rests for 200 ms.
+  drawMoving() {
+    if (state.viewMode !== 'preview') return;
+    if (!this.movePending) {
+      this.movePending = true;
+      requestAnimationFrame(() => {
+        this.movePending = false;
+        this.frame(0.5);
+      });
+    }
+    clearTimeout(this.rest);
+    this.rest = setTimeout(() => this.draw(), 200);
   },
   draw() {
     if (state.viewMode !== 'preview') return;
@@ -755,15 +798,16 @@ const preview = {
   },
 };
 
-// Frames per second over `frames` frames, each waited for (readPixels blocks until done).
-function measureFps(frames) {
+// Frames per second over `frames` frames at `scale` of the canvas, each waited for (readPixels
+// blocks until the frame is done).
+function measureFps(frames, scale = 1) {
   const gl = preview.gl;
   const px = new Uint8Array(4);
-  preview.frame();
+  preview.frame(scale);
   gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
   const t0 = performance.now();
   for (let i = 0; i < frames; i++) {
-    preview.frame();
+    preview.frame(scale);
     gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
   }
   const ms = performance.now() - t0;
@@ -901,11 +945,10 @@ async function save() {
   logNote(`saved ${body.saved}`);
   return true;
 }
+// Saves and exports are logged too, after the action they followed; they are not undoable.
 function logNote(text) {
-  const li = document.createElement('li');
-  li.textContent = `${new Date().toLocaleTimeString()} ${text}`;
-  li.className = 'note';
-  $('log').appendChild(li);
+  state.notes.push({ after: state.at, text, time: new Date() });
+  renderLog();
 }
 async function exportMesh() {
   const format = $('export-format').value, via = $('export-via').value;
@@ -1010,5 +1053,5 @@ async function start() {
 }
 
 // What the end-to-end test reads.
-window.editor = { state, measureFps, preview, pathString };
+window.editor = { state, measureFps, preview, pathString, setCamera };
 start();

@@ -270,8 +270,10 @@ fn call(code: &Code, c: &Call, q: DVec3) -> f64 {
     }
 }
 
-/// `sceneLeaf(p)`: the distance and the deciding leaf (−1: none).
-pub(crate) fn scene_leaf(code: &Code, p: DVec3) -> (f64, f64) {
+/// `sceneLeaf(p)`: the distance, the deciding leaf (−1: none), and how many primitives were
+/// skipped by their bounding sphere.
+pub(crate) fn scene_leaf(code: &Code, p: DVec3) -> (f64, f64, usize) {
+    let mut culled = 0;
     let n = code.stmts.len();
     let mut qs = vec![DVec3::ZERO; n + 1];
     let mut ds = vec![(0.0, 0.0); n + 1];
@@ -284,12 +286,20 @@ pub(crate) fn scene_leaf(code: &Code, p: DVec3) -> (f64, f64) {
                 call: c,
                 factor,
                 leaf,
+                cull,
             } => {
                 let q = q.map_or(p, |v| qs[v as usize]);
-                let mut d = call(code, c, q);
-                if *factor != 1.0 {
-                    d *= factor;
-                }
+                let bound = cull.and_then(|k| {
+                    let b = k.ratio * (p - k.center).length() - k.radius;
+                    let a = ds[k.against as usize].0;
+                    let t = if k.negate { -a } else { a };
+                    (b > t + k.margin).then_some(b)
+                });
+                culled += usize::from(bound.is_some());
+                let d = bound.unwrap_or_else(|| {
+                    let d = call(code, c, q);
+                    if *factor != 1.0 { d * factor } else { d }
+                });
                 ds[*dst as usize] = (d, *leaf as f64);
             }
             Stmt::Empty { dst } => ds[*dst as usize] = (EMPTY, -1.0),
@@ -299,5 +309,6 @@ pub(crate) fn scene_leaf(code: &Code, p: DVec3) -> (f64, f64) {
             }
         }
     }
-    code.result.map_or((EMPTY, -1.0), |v| ds[v as usize])
+    let (d, leaf) = code.result.map_or((EMPTY, -1.0), |v| ds[v as usize]);
+    (d, leaf, culled)
 }

@@ -15,13 +15,15 @@ pub(crate) type Var = u32;
 pub(crate) enum Stmt {
     /// `vec3 q{dst} = m * p + t;` the world → local map of a primitive.
     Point { dst: Var, m: DMat3, t: DVec3 },
-    /// `float d{dst} = call(q{q} or p) * factor;` a primitive's world distance, from leaf `leaf`.
+    /// `float d{dst} = call(q{q} or p) * factor;` a primitive's world distance, from leaf `leaf`;
+    /// with `cull`, skipped where it cannot change the combination it feeds.
     Dist {
         dst: Var,
         q: Option<Var>,
         call: Call,
         factor: f64,
         leaf: u32,
+        cull: Option<Cull>,
     },
     /// `float d{dst} = EMPTY;` an operation without children.
     Empty { dst: Var },
@@ -32,6 +34,22 @@ pub(crate) enum Stmt {
         a: Var,
         b: Var,
     },
+}
+
+/// When a primitive is the right operand of a union or a subtraction, far from its bounding
+/// sphere it cannot change the result: there the code uses the sphere's bound
+/// `L = ratio · |p − center| − radius` (≤ the primitive's value) instead of evaluating it. `L`
+/// is taken where `L > ±d{against} + margin` (`+` for a union, `−` for a subtraction): then the
+/// combination's value and deciding operand are those of `d{against}` either way (up to
+/// `e^(−40)` of the blend for an exponential smooth one).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Cull {
+    pub center: DVec3,
+    pub ratio: f64,
+    pub radius: f64,
+    pub against: Var,
+    pub negate: bool,
+    pub margin: f64,
 }
 
 /// A boolean with its smoothing, `k` in world units.
@@ -147,7 +165,9 @@ pub(crate) struct Code {
 impl Code {
     /// Unrolls a compiled program (the same one the CPU evaluates, so transforms, world-unit
     /// factors and smoothing constants are taken over exactly).
-    pub(crate) fn from_program(program: &Program) -> Code {
+    /// With `cull`, primitives are skipped by their bounding spheres where they cannot matter
+    /// (see [`Cull`]).
+    pub(crate) fn from_program(program: &Program, cull: bool) -> Code {
         let mut code = Code::default();
         let mut stack: Vec<Var> = Vec::new();
         let mut next: Var = 0;
@@ -175,6 +195,7 @@ impl Code {
                         call,
                         factor: leaf.factor,
                         leaf: i,
+                        cull: None,
                     });
                     code.materials.push(leaf.material);
                     stack.push(next);
@@ -189,9 +210,13 @@ impl Code {
                     let (Some(b), Some(a)) = (stack.pop(), stack.pop()) else {
                         break;
                     };
+                    let op = combine_of(op);
+                    if cull {
+                        code.cull(program, &op, a, b);
+                    }
                     code.stmts.push(Stmt::Combine {
                         dst: next,
-                        op: combine_of(op),
+                        op,
                         a,
                         b,
                     });
@@ -202,6 +227,54 @@ impl Code {
         }
         code.result = stack.pop();
         code
+    }
+
+    /// Marks `d{b}` as culled against `d{a}` when it is a bounded primitive whose distance is
+    /// exact in its frame (so never below its bounding sphere's) and `op` lets it be skipped.
+    fn cull(&mut self, program: &Program, op: &Combine, a: Var, b: Var) {
+        let (negate, margin) = match (op.op, op.smooth) {
+            (BoolOp::Intersection, _) => return,
+            (BoolOp::Union, None) => (false, 0.0),
+            (BoolOp::Difference, None) => (true, 0.0),
+            (o, Some((poly, k))) => (
+                o == BoolOp::Difference,
+                // A polynomial blend ends where the operands differ by k; an exponential one
+                // adds at most ln(1 + e^(−40)) / k beyond 40 / k.
+                if poly { k } else { 40.0 / k },
+            ),
+        };
+        let Some(Stmt::Dist {
+            dst, leaf, cull, ..
+        }) = self.stmts.last_mut()
+        else {
+            return;
+        };
+        if *dst != b {
+            return;
+        }
+        let l = &program.leaves[*leaf as usize];
+        let exact = matches!(
+            l.shape,
+            Shape::Box { .. }
+                | Shape::Sphere { .. }
+                | Shape::Cylinder { .. }
+                | Shape::Cone { .. }
+                | Shape::Pyramid { .. }
+                | Shape::Torus { .. }
+        );
+        let bounds = l.shape.local_bounds();
+        if !exact || bounds.is_empty() || !(l.factor > 0.0 && l.condition.is_finite()) {
+            return;
+        }
+        let center = bounds.center();
+        *cull = Some(Cull {
+            center: l.to_world.transform_point3(center),
+            ratio: 1.0 / l.condition,
+            radius: l.factor * 0.5 * bounds.diagonal(),
+            against: a,
+            negate,
+            margin,
+        });
     }
 
     fn call(&mut self, shape: &Shape, polygons: &mut u32) -> Call {

@@ -47,7 +47,17 @@ pub struct Shader {
 /// `uOrthoHeight` (> 0: orthographic), and `uSelLo`, `uSelHi` (the highlighted leaves).
 #[must_use]
 pub fn fragment_shader(scene: &Scene) -> Shader {
-    let code = Code::from_program(&scene.program);
+    fragment_shader_with(scene, false)
+}
+
+/// [`fragment_shader`], with the skipping of primitives by their bounding spheres on or off.
+/// Skipping evaluates a primitive that is the right operand of a union or subtraction only
+/// where it can change the result; it pays where neighbouring pixels branch alike, and costs
+/// where a GPU (or SwiftShader, measured: 30 % slower on the mechanical example) runs both
+/// sides of a branch for a group of pixels, so it is off in [`fragment_shader`].
+#[must_use]
+pub fn fragment_shader_with(scene: &Scene, cull: bool) -> Shader {
+    let code = Code::from_program(&scene.program, cull);
     let mut out = String::from("#version 300 es\nprecision highp float;\nprecision highp int;\n");
     constants(scene, &code, &mut out);
     out.push_str(PRELUDE);
@@ -171,12 +181,14 @@ mod tests {
     }
 
     /// The interpreted shader code against the scene at sample points: distance and material.
+    /// Returns how many primitive evaluations the bounding spheres saved.
     fn agree(name: &str, scene: &Scene) -> usize {
-        let code = Code::from_program(&scene.program);
-        let mut checked = 0;
+        let code = Code::from_program(&scene.program, true);
+        let mut culled = 0;
         for p in samples(scene, 4000) {
             let want = scene.distance(p);
-            let (got, leaf) = interp::scene_leaf(&code, p);
+            let (got, leaf, skipped) = interp::scene_leaf(&code, p);
+            culled += skipped;
             assert!(
                 (got - want).abs() <= 1e-9 * (1.0 + want.abs()),
                 "{name}: at {p} the shader code gives {got}, the scene {want}"
@@ -187,9 +199,8 @@ mod tests {
                 scene.material_at(p),
                 "{name}: at {p} the shader code's leaf {leaf} has another material"
             );
-            checked += 1;
         }
-        checked
+        culled
     }
 
     #[test]
@@ -202,7 +213,11 @@ mod tests {
                 continue;
             }
             let scene = Scene::from_path(&path).unwrap();
-            assert_eq!(agree(&path.display().to_string(), &scene), 4000);
+            let culled = agree(&path.display().to_string(), &scene);
+            if path.ends_with("mechanical_part.json") {
+                // The holes and slots are skipped away from them: the culled path is tested.
+                assert!(culled > 4000, "only {culled} primitives culled");
+            }
             let shader = fragment_shader(&scene);
             assert_eq!(shader.leaf_paths.len(), scene.primitive_count());
             assert!(!shader.source.contains("NaN") && !shader.source.contains("inf"));
@@ -247,7 +262,7 @@ mod tests {
         }"##,
         )
         .unwrap();
-        assert_eq!(agree("every shape", &scene), 4000);
+        assert!(agree("every shape", &scene) > 0);
         let shader = fragment_shader(&scene);
         for helper in [
             "sdPyramid(",

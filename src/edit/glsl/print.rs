@@ -227,11 +227,35 @@ pub(crate) fn scene_function(code: &Code, with_leaf: bool, out: &mut String) {
                 call: c,
                 factor,
                 leaf,
+                cull,
             } => {
                 let q = q.map_or("p".to_string(), |v| format!("q{v}"));
                 let mut e = call(c, &q);
                 if *factor != 1.0 {
                     e = format!("{e} * {}", lit(*factor));
+                }
+                if let Some(k) = cull {
+                    // The bound first: the primitive is evaluated only where it may matter.
+                    let against = if with_leaf {
+                        format!("d{}.x", k.against)
+                    } else {
+                        format!("d{}", k.against)
+                    };
+                    let sign = if k.negate { "-" } else { "" };
+                    let _ = writeln!(
+                        out,
+                        "  float b{dst} = {} * length(p - {}) - {};",
+                        lit(k.ratio),
+                        v3(k.center),
+                        lit(k.radius)
+                    );
+                    // A branch, not `?:`, so that the primitive is not evaluated where skipped.
+                    let _ = writeln!(
+                        out,
+                        "  if (!(b{dst} > {sign}{against} + {})) b{dst} = {e};",
+                        lit(k.margin)
+                    );
+                    e = format!("b{dst}");
                 }
                 if with_leaf {
                     let _ = writeln!(out, "  vec2 d{dst} = vec2({e}, {leaf}.0);");
