@@ -280,6 +280,26 @@ fn saves_exports_and_serves_the_page_on_loopback() {
     );
     assert_eq!(status, 200);
     assert!(scratch.path("copy.json").exists());
+    // Keys keep the order they were sent in (the file is the user's).
+    let ordered = r#"{"document": {"tree": {"kind": "sdf_primitive", "data": {"radius": 0.5, "primitive_type": "sphere"}}, "kind": "sdf_scene"}, "path": "copy.json"}"#;
+    let (status, _) = request(
+        port,
+        "POST",
+        "/api/save",
+        &[("Content-Type", "application/json")],
+        ordered.as_bytes(),
+        None,
+    );
+    assert_eq!(status, 200);
+    let text = std::fs::read_to_string(scratch.path("copy.json")).unwrap();
+    assert!(
+        text.find("\"tree\"") < text.find("\"kind\": \"sdf_scene\""),
+        "{text}"
+    );
+    assert!(
+        text.find("\"radius\": 0.5") < text.find("\"primitive_type\""),
+        "{text}"
+    );
     // No temporary file is left behind.
     let mut files = scratch.files();
     files.sort();

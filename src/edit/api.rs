@@ -216,28 +216,32 @@ impl Editor {
             .path
             .file_name()
             .map(|n| n.to_string_lossy().into_owned());
+        // The document goes out as its own text (checked to be JSON), keys in the file's order.
         let (document, exists, error) = match std::fs::read_to_string(&self.path) {
             Ok(text) => match serde_json::from_str::<Value>(&text) {
                 Ok(v) => {
                     let err = Scene::from_json_value(&v).err().map(|e| e.to_string());
-                    (v, true, err)
+                    (text, true, err)
                 }
                 Err(e) => (
-                    serde_json::from_str(STARTER).unwrap_or(Value::Null),
+                    STARTER.to_string(),
                     true,
                     Some(format!("the file is not valid JSON ({e}); starting afresh")),
                 ),
             },
-            Err(_) => (
-                serde_json::from_str(STARTER).unwrap_or(Value::Null),
-                false,
-                None,
-            ),
+            Err(_) => (STARTER.to_string(), false, None),
         };
-        Response::json(
-            200,
-            &json!({ "file": name, "exists": exists, "document": document, "error": error }),
-        )
+        let head = json!({ "file": name, "exists": exists, "error": error }).to_string();
+        let mut body = head[..head.len() - 1].to_string();
+        body.push_str(",\"document\":");
+        body.push_str(document.trim());
+        body.push('}');
+        Response {
+            status: 200,
+            content_type: "application/json",
+            headers: Vec::new(),
+            body: body.into_bytes(),
+        }
     }
 
     /// A file name inside the scene's folder: no folders, no `..`, not a link or a folder.
@@ -285,12 +289,17 @@ impl Editor {
         let req = request(body, &["document", "path"])?;
         let document = field(&req, "document")?;
         Scene::from_json_value(document).map_err(|e| from_error(e, "$.document"))?;
+        // The document's own text, so that its keys keep their order (a `Value` sorts them).
+        let raw: std::collections::HashMap<String, Box<serde_json::value::RawValue>> =
+            serde_json::from_slice(body)
+                .map_err(|e| bad("$", format!("$: the request body is not valid JSON: {e}")))?;
+        let document = raw.get("document").map_or("null", |r| r.get());
         let target = match req.get("path") {
             None => self.path.clone(),
             Some(Value::String(name)) => path_of(self.inside(name, "the scene file", &["json"])?),
             Some(_) => return Err(bad("$.path", "$.path: expected a file name (a string)")),
         };
-        let mut text = serde_json::to_string_pretty(document).unwrap_or_default();
+        let mut text = pretty(document);
         text.push('\n');
         write_file_atomically(&target, text.as_bytes()).map_err(|e| from_error(e, ""))?;
         Ok(Response::json(
@@ -346,6 +355,63 @@ impl Editor {
             body: bytes,
         })
     }
+}
+
+/// Valid JSON text laid out two spaces an indent, keys and numbers as written. Strings cannot
+/// hold a raw newline, so every line break written here is structural; a loop, no recursion.
+fn pretty(json: &str) -> String {
+    let mut out = String::with_capacity(json.len() * 2);
+    let mut depth = 0usize;
+    let (mut in_string, mut escaped) = (false, false);
+    let mut chars = json.chars().peekable();
+    let newline = |out: &mut String, depth: usize| {
+        out.push('\n');
+        out.extend(std::iter::repeat_n("  ", depth));
+    };
+    while let Some(c) = chars.next() {
+        if in_string {
+            out.push(c);
+            if escaped {
+                escaped = false;
+            } else if c == '\\' {
+                escaped = true;
+            } else if c == '"' {
+                in_string = false;
+            }
+            continue;
+        }
+        match c {
+            '"' => {
+                in_string = true;
+                out.push(c);
+            }
+            '{' | '[' => {
+                out.push(c);
+                while chars.peek().is_some_and(|c| c.is_ascii_whitespace()) {
+                    chars.next();
+                }
+                if matches!(chars.peek(), Some('}' | ']')) {
+                    out.extend(chars.next());
+                } else {
+                    depth += 1;
+                    newline(&mut out, depth);
+                }
+            }
+            '}' | ']' => {
+                depth = depth.saturating_sub(1);
+                newline(&mut out, depth);
+                out.push(c);
+            }
+            ',' => {
+                out.push(c);
+                newline(&mut out, depth);
+            }
+            ':' => out.push_str(": "),
+            c if c.is_ascii_whitespace() => {}
+            c => out.push(c),
+        }
+    }
+    out
 }
 
 fn path_of(r: Response) -> PathBuf {
@@ -642,4 +708,26 @@ fn mesh_view(body: &[u8]) -> Answer {
         200,
         &json!({ "report": report, "positions": positions, "triangles": triangles }),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pretty_keeps_order_text_and_value() {
+        let text = r#"{"tree":{"op":"union","children":[{"kind":"sdf_primitive","data":{"radius":1.0,"primitive_type":"sphere"}}]},"a":[], "s":"x,\"{:}[","e":{}}"#;
+        let out = pretty(text);
+        let a: Value = serde_json::from_str(text).unwrap();
+        let b: Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(a, b);
+        assert!(out.find("\"tree\"").unwrap() < out.find("\"a\"").unwrap());
+        assert!(out.find("\"radius\": 1.0").unwrap() < out.find("primitive_type").unwrap());
+        assert!(out.contains("\"s\": \"x,\\\"{:}[\""), "{out}");
+        assert!(out.contains("\"a\": []") && out.contains("\"e\": {}"));
+        assert!(
+            out.starts_with("{\n  \"tree\": {\n    \"op\": \"union\","),
+            "{out}"
+        );
+    }
 }

@@ -44,8 +44,8 @@ pub(crate) fn solid_angle(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> f64
 /// slicer, a mesher or a renderer resolves, and what manifold3d's own cleanup removes. Relative
 /// to the shell, not the whole mesh, so a unit part beside a box a million times larger keeps
 /// its triangles. (A part joined to such a box is one shell: the report then counts the part's
-/// triangles as needles, but `to_mesh` removes needles only at the scale of the region where
-/// the boolean's operands met, so it leaves them be.) Larger thresholds would start eating real detail of tessellated curves (a
+/// triangles as needles, but `to_mesh` judges needles at no more than 16 times the scale of the
+/// region where the boolean's operands met, so it leaves them be.) Larger thresholds would start eating real detail of tessellated curves (a
 /// 10⁻³ fillet on a 10³ model has triangles of area 10⁻¹¹ d²).
 pub(crate) const NEEDLE_AREA: f64 = 1e-12;
 

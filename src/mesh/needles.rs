@@ -36,9 +36,9 @@ use crate::hash::FxHashMap;
 /// that use an index out of range or a non-finite position (not a mesh this pass can reason
 /// about).
 ///
-/// `scale`, where given, caps the diagonal the thresholds are taken from: a boolean passes the
-/// size of the region where its operands met, so a part joined to a box 10³⁸ across keeps its
-/// triangles (by the box's diagonal, every one of them would be a needle).
+/// `scale`, where given, caps the diagonal the thresholds are taken from: a boolean passes 16
+/// times the size of the region where its operands met, so a part joined to a box 10³⁸ across
+/// keeps its triangles (by the box's diagonal, every one of them would be a needle).
 pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
     let n = mesh.positions.len();
     if mesh

@@ -44,6 +44,15 @@ pub(crate) const WELD_TOLERANCES: f64 = 8.0;
 /// weld. The widest weld stays near 10⁻⁷ of the model.
 const WELD_RETRIES: u32 = 4;
 
+/// How far beyond the region where a boolean's operands met (as a multiple of its diagonal) a
+/// shell's own size still sets the needle threshold in `to_mesh`. A union's shell is often a
+/// few times that region (a box joined at one corner of another): judged by the region alone,
+/// a triangle the report counts as a needle by its shell was left (a spike 1.5e-8 long on a
+/// shell 3.5 times the region). Beyond it the region caps the scale, so a part joined to a box
+/// 10³⁸ across keeps its triangles: the threshold is then at most 256 × 10⁻¹² of the region's
+/// diagonal squared, triangles under 1.6e-5 of the region across.
+pub(crate) const NEEDLE_REGION_REACH: f64 = 16.0;
+
 /// A polygon as a ring of welded vertex indices, with the polygon it came from.
 #[derive(Clone, Debug)]
 pub(crate) struct Ring {
@@ -68,9 +77,10 @@ pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64) -> Mesh {
     if !cracks.is_empty() {
         (mesh, cracks) = repair(polygons, delta, &wide, false, None);
     }
-    // Needles are judged at the scale of the region the boolean worked in (see
+    // Needles are judged at the scale of the shell, as the report judges them, but never of
+    // more than `NEEDLE_REGION_REACH` times the region the boolean worked in (see
     // [`super::needles::remove_needles`]).
-    let scale = Some(eps / Tolerance::RELATIVE);
+    let scale = Some(NEEDLE_REGION_REACH * eps / Tolerance::RELATIVE);
     if cracks.is_empty() {
         super::needles::remove_needles(&mut mesh, scale);
         return mesh;
