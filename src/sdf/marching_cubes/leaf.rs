@@ -7,6 +7,7 @@ use super::cull::Block;
 use super::refine::refine;
 use super::table::{TABLE, corner_pos, edge_corners, face_connects, face_corners};
 use super::{DELTA, Field, Grid, Source};
+use crate::geom::MAX_MOVE;
 use crate::sdf::eval::Scratch;
 
 /// One block's share of the mesh, with local vertex indices.
@@ -143,6 +144,16 @@ fn sample<S: Source + ?Sized>(field: &Field<S>, frame: &LeafFrame, w: &mut Work)
     }
     w.values.resize(frame.npts(), 0.0);
     field.eval_batch(&mut w.scratch, &w.points, &mut w.values);
+    // A point inside by less than a hair (the farthest the needle pass may move the surface)
+    // counts as outside: where the surface grazes a row of grid points, their values a hair
+    // below zero made a shell of its own, a rod 10⁻⁶ of the grid across whose end caps were
+    // needles no collapse could remove without changing the rod's topology.
+    let hair = MAX_MOVE * g.bbox().diagonal();
+    for v in w.values.iter_mut() {
+        if *v < 0.0 && *v > -hair {
+            *v = 0.0;
+        }
+    }
     for k in 0..pz {
         for j in 0..py {
             for i in 0..px {
