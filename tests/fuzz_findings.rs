@@ -106,6 +106,7 @@ fn coarse_bsp_report(name: &str) -> bspcsg::MeshReport {
     let coarse = bspcsg::TessellationOptions {
         tolerance: Some(d / 20.0),
         cell: Some(d / 12.0),
+        max_angle: None,
     };
     scene.to_solid(&coarse).unwrap().to_mesh().report()
 }

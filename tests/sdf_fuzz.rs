@@ -61,7 +61,11 @@ proptest! {
         if let Ok(scene) = Scene::from_json_str(&doc.to_string()) {
             let _ = scene.distance(glam::DVec3::new(0.1, 0.2, 0.3));
             let _ = scene.bake(&BakeOptions::with_resolution(12));
-            let _ = scene.to_solid(&TessellationOptions { tolerance: Some(0.2), cell: Some(0.3) });
+            let _ = scene.to_solid(&TessellationOptions {
+                tolerance: Some(0.2),
+                cell: Some(0.3),
+                max_angle: None,
+            });
         }
     }
 }

@@ -27,6 +27,7 @@ fn check(name: &str) {
         .to_solid(&TessellationOptions {
             tolerance: Some(TOLERANCE),
             cell: Some(CELL),
+            max_angle: None,
         })
         .unwrap();
     let (v_sdf, v_bsp) = (mesh.volume(), solid.volume());
@@ -96,4 +97,52 @@ fn extruded_profile() {
 #[test]
 fn turned_and_twisted() {
     check("turned_and_twisted");
+}
+
+/// A drilled hole 1/50 of the scene across: by the default chordal tolerance alone (1/500 of
+/// the diagonal) a few segments, with the default angle bound at least 36, so the hole's
+/// volume is right within 1.5 %; a chosen tolerance without an angle is taken as given.
+#[test]
+fn default_tessellation_is_bounded_by_angle() {
+    let scene = Scene::from_json_str(
+        r#"{"op": "subtract", "children": [
+            {"kind": "sdf_primitive", "data": {"primitive_type": "box", "size": [10, 1, 10]}},
+            {"kind": "sdf_primitive", "pos": [1, 0, 1],
+             "data": {"primitive_type": "cylinder", "radius": 0.1, "height": 2}}
+        ]}"#,
+    )
+    .unwrap();
+    let hole = |opts: &TessellationOptions| 100.0 - scene.to_solid(opts).unwrap().volume();
+    let exact = std::f64::consts::PI * 0.01;
+    let by_default = hole(&TessellationOptions::default());
+    assert!(
+        (by_default - exact).abs() < 0.015 * exact,
+        "hole volume {by_default} against {exact}"
+    );
+    // 36 segments: the inscribed 36-gon's area.
+    let n36 = 0.5 * 36.0 * 0.01 * (std::f64::consts::TAU / 36.0).sin();
+    assert!(
+        (by_default - n36).abs() < 1e-9,
+        "{by_default} against {n36}"
+    );
+    // The default tolerance, 1/500 of the box's diagonal, given explicitly: 5 segments.
+    let tolerance = 201.0f64.sqrt() / 500.0;
+    let chordal_only = hole(&TessellationOptions::with_tolerance(tolerance));
+    assert!(chordal_only < 0.9 * exact, "{chordal_only}");
+    let with_angle = hole(&TessellationOptions {
+        max_angle: Some(5.0),
+        ..TessellationOptions::with_tolerance(tolerance)
+    });
+    let n72 = 0.5 * 72.0 * 0.01 * (std::f64::consts::TAU / 72.0).sin();
+    assert!(
+        (with_angle - n72).abs() < 1e-9,
+        "{with_angle} against {n72}"
+    );
+    for bad in [0.0, -1.0, 121.0, f64::NAN] {
+        let opts = TessellationOptions {
+            max_angle: Some(bad),
+            ..TessellationOptions::default()
+        };
+        assert!(scene.to_solid(&opts).is_err(), "max_angle {bad}");
+    }
 }

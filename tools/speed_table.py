@@ -31,7 +31,7 @@ CASES = [
     ("sphere 128×64 ∩ moved", "intersection", ["sphere128_a", "sphere128_b"], 5),
     ("cube(2) − sphere 128×64", "difference", ["cube2", "sphere128_a"], 5),
     ("block − 10×10 cylinders (32 segments)", "difference", ["block", "holes"], 5),
-    ("Menger sponge depth 3 (cube − 27+... bars)", "difference", ["menger_cube", "menger_bars3"], 5),
+    ("Menger sponge depth 3 (cube − union of its bars)", "difference", ["menger_cube", "menger_bars3"], 5),
     ("spot ∪ spot moved (0.3, 0.1, 0.2)", "union", ["spot_a", "spot_b"], 5),
     ("fandisk − fandisk moved (0.5, 0.5, 0.25)", "difference", ["fandisk_a", "fandisk_b"], 5),
     ("rocker-arm ∪ rocker-arm moved (0.05, 0.02, 0.01)", "union", ["rocker-arm_a", "rocker-arm_b"], 5),

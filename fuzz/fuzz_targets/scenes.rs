@@ -26,6 +26,7 @@ fuzz_target!(|data: &[u8]| {
     let coarse = TessellationOptions {
         tolerance: Some(diagonal / 20.0),
         cell: Some(diagonal / 12.0),
+        max_angle: None,
     };
     if let Ok(solid) = scene.to_solid(&coarse) {
         let report = solid.to_mesh().report();

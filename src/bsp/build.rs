@@ -26,29 +26,44 @@ enum Slot {
     Back(u32),
 }
 
-/// Polygons with their boxes and centroids; split pieces are appended.
-struct Arena {
-    polys: Vec<Polygon>,
+/// Polygons with their boxes and centroids: the solid's own, borrowed, then the split pieces,
+/// appended. Borrowing spares a copy of every polygon of the operand per boolean.
+struct Arena<'a> {
+    base: &'a [Polygon],
+    pieces: Vec<Polygon>,
     boxes: Vec<Aabb>,
     centroids: Vec<DVec3>,
 }
 
-impl Arena {
-    fn new(polys: Vec<Polygon>) -> Self {
-        let boxes = polys.iter().map(Polygon::bbox).collect();
-        let centroids = polys.iter().map(Polygon::centroid).collect();
+impl<'a> Arena<'a> {
+    fn new(base: &'a [Polygon]) -> Self {
+        let boxes = base.iter().map(Polygon::bbox).collect();
+        let centroids = base.iter().map(Polygon::centroid).collect();
         Arena {
-            polys,
+            base,
+            pieces: Vec::new(),
             boxes,
             centroids,
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.base.len() + self.pieces.len()
+    }
+
+    fn poly(&self, id: u32) -> &Polygon {
+        let id = id as usize;
+        match self.base.get(id) {
+            Some(p) => p,
+            None => &self.pieces[id - self.base.len()],
         }
     }
 
     fn push(&mut self, p: Polygon) -> u32 {
         self.boxes.push(p.bbox());
         self.centroids.push(p.centroid());
-        self.polys.push(p);
-        (self.polys.len() - 1) as u32
+        self.pieces.push(p);
+        (self.len() - 1) as u32
     }
 
     fn bbox_of(&self, ids: &[u32]) -> Aabb {
@@ -67,14 +82,14 @@ struct Work {
 impl Tree {
     /// Builds the whole tree of a closed solid's polygons with plane-side tolerance `eps`.
     pub fn build(polygons: Vec<Polygon>, eps: f64) -> Tree {
-        Tree::build_focused(polygons, eps, None)
+        Tree::build_focused(&polygons, eps, None)
     }
 
     /// Builds the tree, but where `focus` is given, only the cells whose polygons come within
     /// [`FOCUS_MARGIN`] tolerances of a focus box; the rest stay [`Kind::Stub`]s. Booleans pass
     /// the boxes of the other operand's polygons that come near this surface: only those are
     /// clipped, and their fragments never reach an unbuilt cell.
-    pub fn build_focused(polygons: Vec<Polygon>, eps: f64, focus: Option<&[Aabb]>) -> Tree {
+    pub fn build_focused(polygons: &[Polygon], eps: f64, focus: Option<&[Aabb]>) -> Tree {
         let mut tree = Tree {
             nodes: Vec::new(),
             polygons: Vec::new(),
@@ -87,7 +102,7 @@ impl Tree {
         let margin = FOCUS_MARGIN * eps;
         let mut arena = Arena::new(polygons);
         let mut work = vec![Work {
-            ids: (0..arena.polys.len() as u32).collect(),
+            ids: (0..arena.len() as u32).collect(),
             slot: Slot::Root,
             focus: focus.map(|f| (0..f.len() as u32).collect()),
         }];
@@ -165,15 +180,15 @@ impl Tree {
         eps: f64,
         arena: &mut Arena,
     ) -> (Node, Vec<u32>, Vec<u32>) {
-        let plane = *arena.polys[choose_splitter(&ids, arena, eps) as usize].plane();
+        let plane = *arena.poly(choose_splitter(&ids, arena, eps)).plane();
         let start = self.polygons.len() as u32;
         let mut own = Aabb::EMPTY;
         let (mut front, mut back) = (Vec::new(), Vec::new());
         for id in ids {
-            match arena.polys[id as usize].split(&plane, eps) {
+            match arena.poly(id).split(&plane, eps) {
                 Split::Coplanar => {
                     own = own.union(&arena.boxes[id as usize]);
-                    self.polygons.push(arena.polys[id as usize].clone());
+                    self.polygons.push(arena.poly(id).clone());
                 }
                 Split::Front => front.push(id),
                 Split::Back => back.push(id),
@@ -329,10 +344,10 @@ fn split_cell(ids: Vec<u32>, plane: &Plane, eps: f64, arena: &mut Arena) -> (Vec
             back.push(id);
             continue;
         }
-        match arena.polys[id as usize].split(plane, eps) {
+        match arena.poly(id).split(plane, eps) {
             Split::Front => front.push(id),
             Split::Back => back.push(id),
-            Split::Coplanar if arena.polys[id as usize].plane().normal.dot(plane.normal) > 0.0 => {
+            Split::Coplanar if arena.poly(id).plane().normal.dot(plane.normal) > 0.0 => {
                 front.push(id)
             }
             Split::Coplanar => back.push(id),
@@ -356,10 +371,10 @@ fn choose_splitter(ids: &[u32], arena: &Arena, eps: f64) -> u32 {
     let step = n.div_ceil(SPLITTER_CANDIDATES).max(1);
     let mut best = (usize::MAX, usize::MAX, ids[0]);
     for c in (0..n).step_by(step) {
-        let plane = arena.polys[ids[c] as usize].plane();
+        let plane = arena.poly(ids[c]).plane();
         let (mut front, mut back, mut spanning) = (0usize, 0usize, 0usize);
         for &id in ids {
-            match arena.polys[id as usize].side(plane, eps) {
+            match arena.poly(id).side(plane, eps) {
                 Side::Front => front += 1,
                 Side::Back => back += 1,
                 Side::Spanning => spanning += 1,

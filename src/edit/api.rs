@@ -480,7 +480,11 @@ fn scene_mesh(m: &Map<String, Value>) -> std::result::Result<(Scene, Mesh, f64),
         })
     } else {
         scene
-            .to_solid(&TessellationOptions { tolerance, cell })
+            .to_solid(&TessellationOptions {
+                tolerance,
+                cell,
+                ..TessellationOptions::default()
+            })
             .map(|s| s.to_mesh())
     }
     .map_err(|e| from_error(e, "$.document"))?;

@@ -156,14 +156,14 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
     );
     let (a_kept, b_kept) = rayon::join(
         || {
-            let tree_b = Tree::build_focused(b.clone(), eps, Some(&boxes(&a, &near_a)));
+            let tree_b = Tree::build_focused(&b, eps, Some(&boxes(&a, &near_a)));
             let mut kept = keep_far(&a, &near_a, &surface_b, a_keep);
             let near = tree_b.clip(pick(&a, &near_a), a_keep, a_rule, &surface_b);
             kept.extend(near.into_iter().map(|c| c.polygon));
             kept
         },
         || {
-            let tree_a = Tree::build_focused(a.clone(), eps, Some(&boxes(&b, &near_b)));
+            let tree_a = Tree::build_focused(&a, eps, Some(&boxes(&b, &near_b)));
             let mut kept = keep_far(&b, &near_b, &surface_a, b_keep);
             let first = tree_a.clip(pick(&b, &near_b), b_keep, Coplanar::SameFront, &surface_a);
             let (again, done): (Vec<_>, Vec<_>) = first.into_iter().partition(|c| c.coplanar);

@@ -45,7 +45,11 @@ pub(crate) fn scene_mesh(
     Ok(match via {
         Via::Bsp => {
             progress.step("tessellating and combining");
-            let options = TessellationOptions { tolerance, cell };
+            let options = TessellationOptions {
+                tolerance,
+                cell,
+                ..TessellationOptions::default()
+            };
             let solid = scene.to_solid(&options)?;
             progress.step("repairing (welding, closing T-junctions)");
             solid.to_mesh()

@@ -141,25 +141,45 @@ fn ring_edges(v: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {
 
 /// The directed edges of a region's rings that no other ring of it (nor the ring itself, where
 /// a T-junction made a spike `a → b → a`) uses the other way.
+///
+/// Most regions are a ring or two: the uses are counted in a sorted list, not a hash map, so a
+/// region costs no allocation beyond its edges.
 fn boundary(rings: &[Ring], members: &[u32]) -> Vec<(u32, u32)> {
-    let mut count: FxHashMap<(u32, u32), i32> = FxHashMap::default();
-    for &m in members {
-        for (a, b) in ring_edges(&rings[m as usize].verts) {
-            *count.entry((a.min(b), a.max(b))).or_default() += if a < b { 1 } else { -1 };
+    let edges: Vec<(u32, u32)> = members
+        .iter()
+        .flat_map(|&m| ring_edges(&rings[m as usize].verts))
+        .collect();
+    let undirected = |(a, b): (u32, u32)| ((a.min(b) as u64) << 32) | a.max(b) as u64;
+    // (edge, uses a→b minus uses b→a, a < b).
+    let mut count: Vec<(u64, i32)> = edges
+        .iter()
+        .map(|&(a, b)| (undirected((a, b)), if a < b { 1 } else { -1 }))
+        .collect();
+    count.sort_unstable_by_key(|c| c.0);
+    count.dedup_by(|later, kept| {
+        let same = later.0 == kept.0;
+        if same {
+            kept.1 += later.1;
         }
+        same
+    });
+    if count.len() == edges.len() {
+        // No edge used twice: every edge is boundary.
+        return edges;
     }
-    let mut out = Vec::new();
-    for &m in members {
-        for (a, b) in ring_edges(&rings[m as usize].verts) {
-            let c = count.get_mut(&(a.min(b), a.max(b))).expect("counted above");
-            // Emit each surplus use once, in its own direction.
-            if a < b && *c > 0 {
-                *c -= 1;
-                out.push((a, b));
-            } else if a > b && *c < 0 {
-                *c += 1;
-                out.push((a, b));
-            }
+    let mut out = Vec::with_capacity(edges.len());
+    for (a, b) in edges {
+        let k = count
+            .binary_search_by_key(&undirected((a, b)), |c| c.0)
+            .expect("counted above");
+        let c = &mut count[k].1;
+        // Emit each surplus use once, in its own direction.
+        if a < b && *c > 0 {
+            *c -= 1;
+            out.push((a, b));
+        } else if a > b && *c < 0 {
+            *c += 1;
+            out.push((a, b));
         }
     }
     out
@@ -184,18 +204,19 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], delta: f64)
             alive: true,
         }));
     }
-    let mut outgoing: FxHashMap<u32, SmallVec<[u32; 4]>> = FxHashMap::default();
-    let mut incoming: FxHashMap<u32, SmallVec<[u32; 4]>> = FxHashMap::default();
+    // Indexed by vertex: every boundary vertex is a welded position, and a table over all of
+    // them is cheaper than hashing each edge end.
+    let mut outgoing: Vec<SmallVec<[u32; 2]>> = vec![SmallVec::new(); positions.len()];
+    let mut incoming: Vec<SmallVec<[u32; 2]>> = vec![SmallVec::new(); positions.len()];
     for (i, e) in edges.iter().enumerate() {
-        outgoing.entry(e.a).or_default().push(i as u32);
-        incoming.entry(e.b).or_default().push(i as u32);
+        outgoing[e.a as usize].push(i as u32);
+        incoming[e.b as usize].push(i as u32);
     }
-    let mut work: Vec<u32> = outgoing.keys().copied().collect();
-    work.sort_unstable();
+    let mut work: Vec<u32> = (0..positions.len() as u32)
+        .filter(|&v| !outgoing[v as usize].is_empty())
+        .collect();
     while let Some(v) = work.pop() {
-        let (Some(outs), Some(ins)) = (outgoing.get(&v), incoming.get(&v)) else {
-            continue;
-        };
+        let (outs, ins) = (&outgoing[v as usize], &incoming[v as usize]);
         if outs.is_empty() || outs.len() != ins.len() {
             continue;
         }
@@ -235,12 +256,12 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], delta: f64)
             let y = edges[eo as usize].b;
             edges[eo as usize].alive = false;
             edges[ei as usize].b = y;
-            let into_y = incoming.get_mut(&y).expect("y has an incoming edge");
+            let into_y = &mut incoming[y as usize];
             into_y.retain(|e| *e != eo);
             into_y.push(ei);
         }
-        outgoing.remove(&v);
-        incoming.remove(&v);
+        outgoing[v as usize].clear();
+        incoming[v as usize].clear();
         work.extend(nbrs);
     }
     for b in boundaries.iter_mut() {
