@@ -98,8 +98,8 @@ impl Response {
     }
 }
 
-/// A request that cannot be answered, as a response.
-type Answer = std::result::Result<Response, Response>;
+/// A request's outcome: `T` (an answer by default), or the response that refuses it.
+type Answer<T = Response> = std::result::Result<T, Response>;
 
 fn bad(path: &str, message: impl Into<String>) -> Response {
     Response::error(400, Some(path), message)
@@ -245,7 +245,7 @@ impl Editor {
     }
 
     /// A file name inside the scene's folder: no folders, no `..`, not a link or a folder.
-    fn inside(&self, name: &str, what: &str, extensions: &[&str]) -> Answer {
+    fn inside(&self, name: &str, what: &str, extensions: &[&str]) -> Answer<PathBuf> {
         let p = Path::new(name);
         let mut parts = p.components();
         let plain = matches!(parts.next(), Some(Component::Normal(_))) && parts.next().is_none();
@@ -280,7 +280,7 @@ impl Editor {
                 format!("$.path: {what} `{name}` exists and is not a regular file"),
             ));
         }
-        Ok(Response::text("text/plain", &full.to_string_lossy()))
+        Ok(full)
     }
 
     /// `POST /api/save`: `{"document": …, "path"?: "name.json"}`, written atomically once the
@@ -296,7 +296,7 @@ impl Editor {
         let document = raw.get("document").map_or("null", |r| r.get());
         let target = match req.get("path") {
             None => self.path.clone(),
-            Some(Value::String(name)) => path_of(self.inside(name, "the scene file", &["json"])?),
+            Some(Value::String(name)) => self.inside(name, "the scene file", &["json"])?,
             Some(_) => return Err(bad("$.path", "$.path: expected a file name (a string)")),
         };
         let mut text = pretty(document);
@@ -337,7 +337,7 @@ impl Editor {
             let Value::String(name) = p else {
                 return Err(bad("$.path", "$.path: expected a file name (a string)"));
             };
-            let target = path_of(self.inside(name, "the export", &[format.extension()])?);
+            let target = self.inside(name, "the export", &[format.extension()])?;
             write_mesh_as(&target, &mesh, scene.materials(), format)
                 .map_err(|e| from_error(e, ""))?;
             return Ok(Response::json(200, &report));
@@ -414,12 +414,8 @@ fn pretty(json: &str) -> String {
     out
 }
 
-fn path_of(r: Response) -> PathBuf {
-    PathBuf::from(String::from_utf8_lossy(&r.body).into_owned())
-}
-
 /// The body as a JSON object with only the `allowed` keys.
-fn request(body: &[u8], allowed: &[&str]) -> std::result::Result<Map<String, Value>, Response> {
+fn request(body: &[u8], allowed: &[&str]) -> Answer<Map<String, Value>> {
     let v: Value = serde_json::from_slice(body)
         .map_err(|e| bad("$", format!("$: the request body is not valid JSON: {e}")))?;
     let Value::Object(m) = v else {
@@ -434,12 +430,12 @@ fn request(body: &[u8], allowed: &[&str]) -> std::result::Result<Map<String, Val
     Ok(m)
 }
 
-fn field<'a>(m: &'a Map<String, Value>, name: &str) -> std::result::Result<&'a Value, Response> {
+fn field<'a>(m: &'a Map<String, Value>, name: &str) -> Answer<&'a Value> {
     m.get(name)
         .ok_or_else(|| bad("$", format!("$: missing `{name}`")))
 }
 
-fn number(m: &Map<String, Value>, name: &str) -> std::result::Result<Option<f64>, Response> {
+fn number(m: &Map<String, Value>, name: &str) -> Answer<Option<f64>> {
     match m.get(name) {
         None | Some(Value::Null) => Ok(None),
         Some(Value::Number(n)) => match n.as_f64() {
@@ -457,7 +453,7 @@ fn number(m: &Map<String, Value>, name: &str) -> std::result::Result<Option<f64>
 }
 
 /// Which meshing route a request asks for: `"bsp"` (default) or `"sdf"`.
-fn via_sdf(m: &Map<String, Value>) -> std::result::Result<bool, Response> {
+fn via_sdf(m: &Map<String, Value>) -> Answer<bool> {
     match m.get("via") {
         None => Ok(false),
         Some(Value::String(s)) if s == "bsp" => Ok(false),
@@ -467,7 +463,7 @@ fn via_sdf(m: &Map<String, Value>) -> std::result::Result<bool, Response> {
 }
 
 /// The request's scene, meshed by its route, and the seconds that took.
-fn scene_mesh(m: &Map<String, Value>) -> std::result::Result<(Scene, Mesh, f64), Response> {
+fn scene_mesh(m: &Map<String, Value>) -> Answer<(Scene, Mesh, f64)> {
     let scene =
         Scene::from_json_value(field(m, "document")?).map_err(|e| from_error(e, "$.document"))?;
     let sdf = via_sdf(m)?;
@@ -562,11 +558,16 @@ fn embed_buffers(gltf: &[u8], dir: &Path) -> std::io::Result<Vec<u8>> {
     serde_json::to_vec(&doc).map_err(std::io::Error::other)
 }
 
-/// `POST /api/validate`: the body is a scene document.
-fn validate(body: &[u8]) -> Answer {
+/// A body that is a scene document, read.
+fn scene_of(body: &[u8]) -> Answer<Scene> {
     let v: Value =
         serde_json::from_slice(body).map_err(|e| bad("$", format!("$: not valid JSON: {e}")))?;
-    let scene = Scene::from_json_value(&v).map_err(|e| from_error(e, ""))?;
+    Scene::from_json_value(&v).map_err(|e| from_error(e, ""))
+}
+
+/// `POST /api/validate`: the body is a scene document.
+fn validate(body: &[u8]) -> Answer {
+    let scene = scene_of(body)?;
     let b = scene.bbox();
     let bbox = (!b.is_empty() && b.min.is_finite() && b.max.is_finite())
         .then(|| json!({ "min": v3(b.min), "max": v3(b.max) }));
@@ -583,7 +584,7 @@ fn validate(body: &[u8]) -> Answer {
 }
 
 /// A query parameter as an image side (1..=4096), or `default`.
-fn side(query: &str, key: &str, default: u32) -> std::result::Result<u32, Response> {
+fn side(query: &str, key: &str, default: u32) -> Answer<u32> {
     for pair in query.split('&') {
         if let Some((k, v)) = pair.split_once('=')
             && k == key
@@ -608,9 +609,7 @@ fn shader(body: &[u8], query: &str) -> Answer {
     // default: in software GL (SwiftShader, which runs branches of neighbouring pixels
     // together) it measured 30 % slower on the mechanical example.
     let cull = query.split('&').any(|kv| kv == "cull=1");
-    let v: Value =
-        serde_json::from_slice(body).map_err(|e| bad("$", format!("$: not valid JSON: {e}")))?;
-    let scene = Scene::from_json_value(&v).map_err(|e| from_error(e, ""))?;
+    let scene = scene_of(body)?;
     let shader = fragment_shader_with(&scene, cull);
     let camera = Camera::for_scene(&scene, View::Iso, (w, h)).unwrap_or_else(|_| {
         // Nothing to frame (an empty scene): a plain view of the unit box.

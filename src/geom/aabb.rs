@@ -44,6 +44,17 @@ impl Aabb {
         !(self.min.x <= self.max.x && self.min.y <= self.max.y && self.min.z <= self.max.z)
     }
 
+    /// The slab test: the span `[near, far]` of `t ∈ [0, t_max]` over which the ray
+    /// `origin + t·dir` lies in the box, given `inv = 1 / dir` (infinite components are fine), or
+    /// `None` where it misses. An empty box is the caller's to rule out.
+    pub(crate) fn ray_span(&self, origin: DVec3, inv: DVec3, t_max: f64) -> Option<(f64, f64)> {
+        let t0 = (self.min - origin) * inv;
+        let t1 = (self.max - origin) * inv;
+        let near = t0.min(t1).max_element().max(0.0);
+        let far = t0.max(t1).min_element().min(t_max);
+        (near <= far).then_some((near, far))
+    }
+
     /// Extends the box to hold `p`.
     #[inline]
     pub fn grow(&mut self, p: DVec3) {

@@ -130,7 +130,7 @@ impl Bvh {
     /// through; stops when it returns true.
     pub fn ray(&self, origin: DVec3, dir: DVec3, item: impl FnMut(u32) -> bool) {
         let inv = dir.recip();
-        self.visit(|b| ray_hits_box(origin, inv, b), item);
+        self.visit(|b| b.ray_span(origin, inv, f64::INFINITY).is_some(), item);
     }
 }
 
@@ -143,15 +143,6 @@ fn morton(v: u32) -> u64 {
     x = (x | x << 4) & 0x10c3_0c30_c30c_30c3;
     x = (x | x << 2) & 0x1249_2492_4924_9249;
     x
-}
-
-/// The slab test; `inv` is the reciprocal direction (infinite components are fine).
-fn ray_hits_box(origin: DVec3, inv: DVec3, b: &Aabb) -> bool {
-    let t0 = (b.min - origin) * inv;
-    let t1 = (b.max - origin) * inv;
-    let near = t0.min(t1).max_element();
-    let far = t0.max(t1).min_element();
-    far >= near.max(0.0)
 }
 
 #[cfg(test)]

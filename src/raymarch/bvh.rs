@@ -695,10 +695,12 @@ mod tests {
 
     #[test]
     fn degenerate_input_stays_shallow() {
-        // Many triangles with the same centroid: SAH finds no split, halving bounds the depth.
+        // Many nested triangles whose boxes share one centre: SAH finds no split, so every
+        // range is halved by count, and the depth is that of a balanced tree of leaves.
+        const N: u32 = 5000;
         let mut positions = Vec::new();
         let mut triangles = Vec::new();
-        for i in 0..5000u32 {
+        for i in 0..N {
             let s = 1.0 + i as f64 * 1e-3;
             positions.extend([
                 DVec3::new(-s, -s, 0.0),
@@ -708,6 +710,12 @@ mod tests {
             triangles.push([3 * i, 3 * i + 1, 3 * i + 2]);
         }
         let bvh = MeshBvh::build(&Mesh::new(positions, triangles));
-        assert!(bvh.depth() < STACK, "depth {}", bvh.depth());
+        let balanced = 1 + (f64::from(N) / MAX_LEAF as f64).log2().ceil() as usize;
+        assert_eq!(bvh.triangle_count(), N as usize);
+        assert!(
+            bvh.depth() <= balanced,
+            "depth {} > {balanced}",
+            bvh.depth()
+        );
     }
 }

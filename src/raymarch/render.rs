@@ -224,12 +224,7 @@ pub(crate) fn clip_to_box(origin: DVec3, dir: DVec3, b: &Aabb, t_max: f64) -> Op
     if b.is_empty() {
         return None;
     }
-    let inv = dir.recip();
-    let t0 = (b.min - origin) * inv;
-    let t1 = (b.max - origin) * inv;
-    let near = t0.min(t1).max_element().max(0.0);
-    let far = t0.max(t1).min_element().min(t_max);
-    (near <= far).then_some((near, far))
+    b.ray_span(origin, dir.recip(), t_max)
 }
 
 #[cfg(test)]

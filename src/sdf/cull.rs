@@ -18,7 +18,7 @@
 use glam::DVec3;
 
 use super::Scene;
-use super::eval::{Bound, Instr, Op, combine_bounds, map_box, run_at};
+use super::eval::{Bound, Instr, Op, run_at};
 use super::tree::SmoothKind;
 use crate::geom::Aabb;
 use crate::solid::BoolOp;
@@ -49,38 +49,20 @@ impl<'a> Culler<'a> {
         let mut bounds = Vec::with_capacity(n);
         let mut start = Vec::with_capacity(n);
         let mut parent = vec![u32::MAX; n];
-        // Per stack entry: (instruction index that closes it, its bound).
-        let mut stack: Vec<(u32, Bound)> = Vec::new();
-        for (i, ins) in prog.instrs.iter().enumerate() {
-            let (b, s) = match *ins {
-                Instr::Leaf(l) => {
-                    let leaf = &prog.leaves[l as usize];
-                    let b = Bound {
-                        bbox: map_box(&leaf.to_world, &leaf.shape.local_bounds()),
-                        alpha: leaf.condition,
-                    };
-                    (b, i as u32)
-                }
-                Instr::Empty => (
-                    Bound {
-                        bbox: Aabb::EMPTY,
-                        alpha: 1.0,
-                    },
-                    i as u32,
-                ),
-                Instr::Op(op) => {
-                    let (Some((jb, bb)), Some((ja, ba))) = (stack.pop(), stack.pop()) else {
-                        // Unreachable for a compiled program; keep everything.
-                        return Culler::keep_all(scene);
-                    };
-                    parent[ja as usize] = i as u32;
-                    parent[jb as usize] = i as u32;
-                    (combine_bounds(op, ba, bb), start[ja as usize])
-                }
-            };
+        let well_formed = prog.walk_bounds(|i, b, operands| {
             bounds.push(b);
-            start.push(s);
-            stack.push((i as u32, b));
+            start.push(match operands {
+                Some((ja, jb)) => {
+                    parent[ja] = i as u32;
+                    parent[jb] = i as u32;
+                    start[ja]
+                }
+                None => i as u32,
+            });
+        });
+        if !well_formed {
+            // Unreachable for a compiled program; keep everything.
+            return Culler::keep_all(scene);
         }
         let diag = scene.bound.bbox.diagonal();
         let delta = if diag.is_finite() && diag > 0.0 {

@@ -67,6 +67,12 @@ pub(crate) struct Bound {
 }
 
 impl Bound {
+    /// The bound of the empty set (an empty box; `alpha` is then immaterial).
+    pub(crate) const EMPTY: Bound = Bound {
+        bbox: Aabb::EMPTY,
+        alpha: 1.0,
+    };
+
     /// The box holding `{f ≤ c}`.
     pub(crate) fn at(&self, c: f64) -> Aabb {
         expand(&self.bbox, self.alpha * c)
@@ -332,32 +338,47 @@ impl Program {
 
     /// The conservative bound of the whole program (see [`Bound`]).
     pub(crate) fn bound(&self) -> Bound {
-        let mut stack: Vec<Bound> = Vec::with_capacity(self.depth);
-        for ins in &self.instrs {
-            match *ins {
-                Instr::Leaf(i) => {
-                    let l = &self.leaves[i as usize];
-                    stack.push(Bound {
-                        bbox: map_box(&l.to_world, &l.shape.local_bounds()),
-                        alpha: l.condition,
-                    });
-                }
-                Instr::Empty => stack.push(Bound {
-                    bbox: Aabb::EMPTY,
-                    alpha: 1.0,
-                }),
-                Instr::Op(op) => {
-                    let (Some(b), Some(a)) = (stack.pop(), stack.pop()) else {
-                        break;
-                    };
-                    stack.push(combine_bounds(op, a, b));
-                }
-            }
+        // In postfix order the last instruction closes the whole program.
+        let mut last = Bound::EMPTY;
+        if !self.walk_bounds(|_, b, _| last = b) {
+            return Bound::EMPTY;
         }
-        stack.pop().unwrap_or(Bound {
-            bbox: Aabb::EMPTY,
-            alpha: 1.0,
-        })
+        last
+    }
+
+    /// One postfix walk over the bounds of every subexpression: `visit(i, bound, operands)` is
+    /// called for each instruction `i` with the bound of the subexpression it closes and, for an
+    /// operation, the instructions closing its two operands `(a, b)`. Returns false, having
+    /// stopped, at an operation short of operands (unreachable for a compiled program).
+    pub(crate) fn walk_bounds(
+        &self,
+        mut visit: impl FnMut(usize, Bound, Option<(usize, usize)>),
+    ) -> bool {
+        // Per stack entry: (instruction that closes it, its bound).
+        let mut stack: Vec<(usize, Bound)> = Vec::with_capacity(self.depth);
+        for (i, ins) in self.instrs.iter().enumerate() {
+            let (b, operands) = match *ins {
+                Instr::Leaf(l) => {
+                    let l = &self.leaves[l as usize];
+                    let bbox = map_box(&l.to_world, &l.shape.local_bounds());
+                    let b = Bound {
+                        bbox,
+                        alpha: l.condition,
+                    };
+                    (b, None)
+                }
+                Instr::Empty => (Bound::EMPTY, None),
+                Instr::Op(op) => {
+                    let (Some((jb, b)), Some((ja, a))) = (stack.pop(), stack.pop()) else {
+                        return false;
+                    };
+                    (combine_bounds(op, a, b), Some((ja, jb)))
+                }
+            };
+            visit(i, b, operands);
+            stack.push((i, b));
+        }
+        true
     }
 
     /// The material ids the program can answer.

@@ -8,7 +8,7 @@ use glam::DVec2;
 
 use super::{Region, crossing, signed_area2};
 use crate::disjoint_sets::DisjointSets;
-use crate::hash::FxHashMap;
+use crate::hash::{FxHashMap, KeyedHashMap, key};
 
 /// Vertices and the directed edges between them, after welding.
 pub(super) struct Graph {
@@ -21,14 +21,13 @@ pub(super) struct Graph {
 /// sign (`a → b` counts +1, `b → a` −1). Edges whose ends weld together vanish.
 pub(super) fn weld(segments: &[[DVec2; 2]], eps: f64) -> Graph {
     // Exact duplicates first (most ends are shared exactly), then clusters within eps.
-    // Tuple and u64 keys hash in one step each; arrays would add a length prefix.
-    let mut exact: FxHashMap<(u64, u64), u32> = FxHashMap::default();
+    // Positions come from input, so their map is keyed (see `crate::hash`).
+    let mut exact: KeyedHashMap<[u64; 3], u32> = KeyedHashMap::default();
     let mut points: Vec<DVec2> = Vec::new();
     let mut ends: Vec<[u32; 2]> = Vec::with_capacity(segments.len());
     for s in segments {
         ends.push(s.map(|p| {
-            let key = (p.x.to_bits(), p.y.to_bits());
-            *exact.entry(key).or_insert_with(|| {
+            *exact.entry(key(p.extend(0.0))).or_insert_with(|| {
                 points.push(p);
                 points.len() as u32 - 1
             })

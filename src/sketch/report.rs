@@ -4,7 +4,7 @@ use glam::DVec2;
 
 use super::fill::box_pairs;
 use super::{Sketch, crossing, signed_area2};
-use crate::hash::FxHashMap;
+use crate::hash::{KeyedHashMap, key};
 
 /// What [`Sketch::report`] finds. A sketch is valid when every count is zero.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -36,10 +36,10 @@ impl SketchReport {
 pub(super) fn report(s: &Sketch) -> SketchReport {
     let eps = s.tolerance().eps();
     let mut r = SketchReport::default();
-    let mut uses: FxHashMap<[u64; 2], u32> = FxHashMap::default();
+    let mut uses: KeyedHashMap<[u64; 3], u32> = KeyedHashMap::default();
     for ring in s.rings() {
         for p in ring {
-            *uses.entry([p.x.to_bits(), p.y.to_bits()]).or_default() += 1;
+            *uses.entry(key(p.extend(0.0))).or_default() += 1;
         }
     }
     let mut segs: Vec<[DVec2; 2]> = Vec::new();
@@ -62,7 +62,7 @@ pub(super) fn report(s: &Sketch) -> SketchReport {
                     segs.push([v, q]);
                 }
                 let base = q - p;
-                let shared = uses[&[v.x.to_bits(), v.y.to_bits()]] > 1;
+                let shared = uses[&key(v.extend(0.0))] > 1;
                 if !shared
                     && base.length() > 0.0
                     && (base.perp_dot(v - p) / base.length()).abs() <= eps

@@ -10,7 +10,7 @@ use glam::{DMat2, DVec2, DVec3};
 use super::{Region, Sketch, lift};
 use crate::error::{Error, Result};
 use crate::geom::triangulate::triangulate_boundary;
-use crate::hash::FxHashMap;
+use crate::hash::{KeyedHashMap, key};
 use crate::polygon::Polygon;
 use crate::primitives::{MAX_SEGMENTS, positive};
 use crate::solid::Solid;
@@ -288,19 +288,17 @@ impl Sketch {
 /// The triangles of a region (counter-clockwise in the xy plane), by constrained Delaunay
 /// triangulation of its rings; vertices shared by two rings are one vertex.
 fn cap(region: &Region, to3: impl Fn(DVec2) -> DVec3) -> Result<Vec<[DVec2; 3]>> {
-    let mut index: FxHashMap<[u64; 2], u32> = FxHashMap::default();
+    let mut index: KeyedHashMap<[u64; 3], u32> = KeyedHashMap::default();
     let mut points: Vec<DVec2> = Vec::new();
     let mut edges: Vec<(u32, u32)> = Vec::new();
     for ring in region.rings() {
         let ids: Vec<u32> = ring
             .iter()
             .map(|&p| {
-                *index
-                    .entry([p.x.to_bits(), p.y.to_bits()])
-                    .or_insert_with(|| {
-                        points.push(p);
-                        points.len() as u32 - 1
-                    })
+                *index.entry(key(p.extend(0.0))).or_insert_with(|| {
+                    points.push(p);
+                    points.len() as u32 - 1
+                })
             })
             .collect();
         for i in 0..ids.len() {

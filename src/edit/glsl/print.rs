@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use glam::{DMat3, DVec2, DVec3};
 
-use super::ir::{Call, Call2, Code, Combine, Stmt, Stmt2};
+use super::ir::{Call, Call2, Code, Combine, Cull, Stmt, Stmt2, Var};
 use crate::solid::BoolOp;
 
 /// A float literal: always with a point or an exponent; beyond f32 it saturates to ±EMPTY.
@@ -208,6 +208,32 @@ fn combine(c: &Combine, a: &str, b: &str) -> String {
     }
 }
 
+/// Writes the bounding-sphere test that guards culled primitive `e` (see [`Cull`]) and returns
+/// the variable that then holds its value.
+fn cull_guard(k: &Cull, dst: Var, e: &str, with_leaf: bool, out: &mut String) -> String {
+    // The bound first: the primitive is evaluated only where it may matter.
+    let against = if with_leaf {
+        format!("d{}.x", k.against)
+    } else {
+        format!("d{}", k.against)
+    };
+    let sign = if k.negate { "-" } else { "" };
+    let _ = writeln!(
+        out,
+        "  float b{dst} = {} * length(p - {}) - {};",
+        lit(k.ratio),
+        v3(k.center),
+        lit(k.radius)
+    );
+    // A branch, not `?:`, so that the primitive is not evaluated where skipped.
+    let _ = writeln!(
+        out,
+        "  if (!(b{dst} > {sign}{against} + {})) b{dst} = {e};",
+        lit(k.margin)
+    );
+    format!("b{dst}")
+}
+
 /// `sceneDist` (with `LEAF == false`) or `sceneLeaf` (distance and deciding leaf as a vec2).
 pub(crate) fn scene_function(code: &Code, with_leaf: bool, out: &mut String) {
     let (ty, name) = if with_leaf {
@@ -235,27 +261,7 @@ pub(crate) fn scene_function(code: &Code, with_leaf: bool, out: &mut String) {
                     e = format!("{e} * {}", lit(*factor));
                 }
                 if let Some(k) = cull {
-                    // The bound first: the primitive is evaluated only where it may matter.
-                    let against = if with_leaf {
-                        format!("d{}.x", k.against)
-                    } else {
-                        format!("d{}", k.against)
-                    };
-                    let sign = if k.negate { "-" } else { "" };
-                    let _ = writeln!(
-                        out,
-                        "  float b{dst} = {} * length(p - {}) - {};",
-                        lit(k.ratio),
-                        v3(k.center),
-                        lit(k.radius)
-                    );
-                    // A branch, not `?:`, so that the primitive is not evaluated where skipped.
-                    let _ = writeln!(
-                        out,
-                        "  if (!(b{dst} > {sign}{against} + {})) b{dst} = {e};",
-                        lit(k.margin)
-                    );
-                    e = format!("b{dst}");
+                    e = cull_guard(k, *dst, &e, with_leaf, out);
                 }
                 if with_leaf {
                     let _ = writeln!(out, "  vec2 d{dst} = vec2({e}, {leaf}.0);");
