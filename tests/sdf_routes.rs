@@ -146,3 +146,36 @@ fn default_tessellation_is_bounded_by_angle() {
         assert!(scene.to_solid(&opts).is_err(), "max_angle {bad}");
     }
 }
+
+/// Every example scene baked as `bspcsg export --via sdf` bakes it (default options) keeps its
+/// triangles whole in float32, as STL and glTF store them: no two corners of a triangle round
+/// to the same point. Marching cubes once put vertices about 1e-8 apart where the surface
+/// grazed grid points, and the organic blend's STL came back with six zero-area triangles.
+#[test]
+fn default_bakes_survive_float32() {
+    for name in [
+        "mechanical_part",
+        "organic_blend",
+        "extruded_profile",
+        "turned_and_twisted",
+    ] {
+        let path = format!("{}/examples/scenes/{name}.json", env!("CARGO_MANIFEST_DIR"));
+        let mesh = Scene::from_path(&path)
+            .unwrap()
+            .bake(&BakeOptions::default())
+            .unwrap();
+        let collapsed = mesh
+            .triangles
+            .iter()
+            .filter(|t| {
+                let [a, b, c] = t.map(|i| mesh.positions[i as usize].as_vec3());
+                a == b || b == c || c == a
+            })
+            .count();
+        println!(
+            "{name}: {} triangles, {collapsed} collapse in f32",
+            mesh.triangles.len()
+        );
+        assert_eq!(collapsed, 0, "{name}");
+    }
+}

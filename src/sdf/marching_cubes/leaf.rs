@@ -147,11 +147,14 @@ fn sample<S: Source + ?Sized>(field: &Field<S>, frame: &LeafFrame, w: &mut Work)
     // A point inside by less than a hair (the farthest the needle pass may move the surface)
     // counts as outside: where the surface grazes a row of grid points, their values a hair
     // below zero made a shell of its own, a rod 10⁻⁶ of the grid across whose end caps were
-    // needles no collapse could remove without changing the rod's topology.
+    // needles no collapse could remove without changing the rod's topology. It becomes a hair
+    // outside, not zero: at zero every crossing from that point starts on the point itself, and
+    // refinement left those vertices about 1e-8 apart, which f32 files (STL, glTF) merge into
+    // zero-area triangles.
     let hair = MAX_MOVE * g.bbox().diagonal();
     for v in w.values.iter_mut() {
         if *v < 0.0 && *v > -hair {
-            *v = 0.0;
+            *v = hair;
         }
     }
     for k in 0..pz {
