@@ -96,12 +96,24 @@ fn a_flat_shell_without_tiny_turns() {
 
 /// The BSP route of a scene document (`tests/fuzz_findings/scene_<i>.json`) at the coarse
 /// settings of the `scenes` target: tolerance 1/20, cell 1/12 of the diagonal.
-fn coarse_bsp_report(name: &str) -> bspcsg::MeshReport {
+fn finding_scene(name: &str) -> bspcsg::Scene {
     let path = format!(
         "{}/tests/fuzz_findings/{name}.json",
         env!("CARGO_MANIFEST_DIR")
     );
-    let scene = bspcsg::Scene::from_json_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    bspcsg::Scene::from_json_str(&std::fs::read_to_string(&path).unwrap()).unwrap()
+}
+
+/// The report of a finding's bake at resolution 12, as the `scenes` target bakes it.
+fn bake_report(name: &str) -> bspcsg::MeshReport {
+    finding_scene(name)
+        .bake(&bspcsg::BakeOptions::with_resolution(12))
+        .unwrap()
+        .report()
+}
+
+fn coarse_bsp_report(name: &str) -> bspcsg::MeshReport {
+    let scene = finding_scene(name);
     let d = scene.bbox().diagonal();
     let coarse = bspcsg::TessellationOptions {
         tolerance: Some(d / 20.0),
@@ -218,19 +230,11 @@ fn scenes_bsp_route_leave_needles() {
 /// long (volume 4.3e-13) along a row of grid vertices where the field is a hair below zero.
 /// Its end caps (area 3.59999999995e-13 against a threshold of 3.6e-13 of its 0.6 diagonal)
 /// cannot collapse without changing the rod's topology. Marching cubes now counts a point
-/// inside by less than the needle pass's largest move as outside, so no such shell is made.
+/// inside by less than the needle pass's largest move as a hair outside, so no such shell is made.
 #[test]
 fn bakes_of_i_beam_variants() {
     for i in 1..=10 {
-        let path = format!(
-            "{}/tests/fuzz_findings/bake_{i}.json",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        let scene = bspcsg::Scene::from_json_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
-        let mesh = scene
-            .bake(&bspcsg::BakeOptions::with_resolution(12))
-            .unwrap();
-        let report = mesh.report();
+        let report = bake_report(&format!("bake_{i}"));
         assert!(
             report.is_closed_manifold() && report.needles == 0,
             "bake_{i}: {report}"
@@ -243,15 +247,7 @@ fn bakes_of_i_beam_variants() {
 #[test]
 fn bakes_with_speck_shells_found_by_a_second_run() {
     for i in 1..=4 {
-        let path = format!(
-            "{}/tests/fuzz_findings/bake_thin_{i}.json",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        let scene = bspcsg::Scene::from_json_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
-        let report = scene
-            .bake(&bspcsg::BakeOptions::with_resolution(12))
-            .unwrap()
-            .report();
+        let report = bake_report(&format!("bake_thin_{i}"));
         assert!(
             report.is_closed_manifold() && report.needles == 0,
             "bake_thin_{i}: {report}"
