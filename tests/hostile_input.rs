@@ -10,6 +10,7 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use bspcsg::{Error, MAX_READ_TRIANGLES, read_mesh};
+use common::box_obj_text;
 use common::run::{Scratch, bspcsg};
 
 /// A unit tetrahedron as a glTF buffer: 4 float32 positions, then 12 u16 indices.
@@ -425,10 +426,10 @@ fn welder_hash_flooding_costs_no_more_than_random_positions() {
 fn a_tiny_cube_at_a_unit_cube_corner_never_gives_a_broken_result_with_success() {
     let dir = Scratch::new("tiny-corner");
     let unit = dir.path("unit.obj");
-    fs::write(&unit, box_obj([0.0; 3], [1.0; 3])).unwrap();
+    fs::write(&unit, box_obj_text([0.0; 3], [1.0; 3])).unwrap();
     for s in [1e-20, 1e-60, 1e-100] {
         let tiny = dir.path(&format!("tiny{s:e}.obj"));
-        fs::write(&tiny, box_obj([-s; 3], [0.0; 3])).unwrap();
+        fs::write(&tiny, box_obj_text([-s; 3], [0.0; 3])).unwrap();
         for op in ["union", "difference"] {
             let out = dir.path(&format!("{op}{s:e}.obj"));
             let run = bspcsg([
@@ -457,31 +458,11 @@ fn a_tiny_cube_at_a_unit_cube_corner_never_gives_a_broken_result_with_success() 
     }
 }
 
-/// OBJ text of an axis-aligned box, outward-facing quads.
-fn box_obj(min: [f64; 3], max: [f64; 3]) -> String {
-    let mut s = String::new();
-    for i in 0..8 {
-        let c = |k: usize, bit: usize| if i & bit == 0 { min[k] } else { max[k] };
-        s += &format!("v {:?} {:?} {:?}\n", c(0, 4), c(1, 2), c(2, 1));
-    }
-    for f in [
-        [1, 2, 4, 3],
-        [5, 7, 8, 6],
-        [1, 5, 6, 2],
-        [3, 4, 8, 7],
-        [1, 3, 7, 5],
-        [2, 6, 8, 4],
-    ] {
-        s += &format!("f {} {} {} {}\n", f[0], f[1], f[2], f[3]);
-    }
-    s
-}
-
 #[test]
 fn output_names_near_the_name_limit_write() {
     let dir = Scratch::new("long-name");
     let input = dir.path("in.obj");
-    fs::write(&input, box_obj([0.0; 3], [1.0; 3])).unwrap();
+    fs::write(&input, box_obj_text([0.0; 3], [1.0; 3])).unwrap();
     // 251 bytes + ".obj" = 255, the longest name a file system takes: the temporary beside it
     // must not be longer.
     let out = dir.path(&format!("{}.obj", "n".repeat(251)));
@@ -501,7 +482,7 @@ fn an_existing_output_keeps_its_mode_and_a_link_stays_a_link() {
     use std::os::unix::fs::{FileTypeExt as _, PermissionsExt as _};
     let dir = Scratch::new("mode-link");
     let input = dir.path("in.obj");
-    fs::write(&input, box_obj([0.0; 3], [1.0; 3])).unwrap();
+    fs::write(&input, box_obj_text([0.0; 3], [1.0; 3])).unwrap();
     let convert = |out: &Path| {
         bspcsg([
             "convert".as_ref(),
@@ -627,8 +608,8 @@ fn overlapping_shells_are_refused_as_an_operand_and_reported_by_info() {
     // volume 2, but the solid they bound is 1.5.
     let two = format!(
         "{}{}",
-        box_obj([0.0; 3], [1.0; 3]),
-        box_obj([0.5, 0.25, 0.25], [1.5, 1.25, 1.25])
+        box_obj_text([0.0; 3], [1.0; 3]),
+        box_obj_text([0.5, 0.25, 0.25], [1.5, 1.25, 1.25])
             .lines()
             .map(|l| match l.strip_prefix("f ") {
                 Some(f) => {
@@ -645,7 +626,7 @@ fn overlapping_shells_are_refused_as_an_operand_and_reported_by_info() {
     let shells = dir.path("shells.obj");
     fs::write(&shells, two).unwrap();
     let other = dir.path("other.obj");
-    fs::write(&other, box_obj([0.25, 0.25, -0.5], [1.25, 1.25, 0.5])).unwrap();
+    fs::write(&other, box_obj_text([0.25, 0.25, -0.5], [1.25, 1.25, 0.5])).unwrap();
     let out = dir.path("out.obj");
     let run = bspcsg([
         "union".as_ref(),
@@ -743,7 +724,11 @@ fn scene_exports_over_the_polygon_budget_are_refused_with_a_tolerance_that_fits(
 fn a_byte_order_mark_is_skipped_in_obj_and_scene_files() {
     let dir = Scratch::new("bom");
     let obj = dir.path("bom.obj");
-    fs::write(&obj, format!("\u{feff}{}", box_obj([0.0; 3], [1.0; 3]))).unwrap();
+    fs::write(
+        &obj,
+        format!("\u{feff}{}", box_obj_text([0.0; 3], [1.0; 3])),
+    )
+    .unwrap();
     let m = read_mesh(&obj).unwrap();
     let report = m.report();
     assert_eq!(m.positions.len(), 8);
@@ -786,8 +771,8 @@ fn small_messages_empty_results_tiny_cubes_and_unbounded_scenes() {
     let dir = Scratch::new("small-messages");
     // An empty result is written, with a warning.
     let (a, b) = (dir.path("a.obj"), dir.path("b.obj"));
-    fs::write(&a, box_obj([0.0; 3], [1.0; 3])).unwrap();
-    fs::write(&b, box_obj([5.0; 3], [6.0; 3])).unwrap();
+    fs::write(&a, box_obj_text([0.0; 3], [1.0; 3])).unwrap();
+    fs::write(&b, box_obj_text([5.0; 3], [6.0; 3])).unwrap();
     let out = dir.path("empty.obj");
     let run = bspcsg([
         "intersection".as_ref(),
@@ -820,7 +805,7 @@ fn small_messages_empty_results_tiny_cubes_and_unbounded_scenes() {
     // A correctly wound cube of side 1e-110 (volume 1e-330, below the least double) is not
     // inside out.
     let tiny = dir.path("tiny.obj");
-    fs::write(&tiny, box_obj([0.0; 3], [1e-110; 3])).unwrap();
+    fs::write(&tiny, box_obj_text([0.0; 3], [1e-110; 3])).unwrap();
     let report = read_mesh(&tiny).unwrap().report();
     assert_eq!(report.inverted_shells, 0, "{report}");
     assert!(report.shells[0].volume > 0.0, "{report}");

@@ -7,6 +7,7 @@ mod common;
 use std::fs;
 
 use bspcsg::{BoolOp, Error, Solid, Tolerance, boolean};
+use common::box_obj_text;
 use common::run::{Scratch, bspcsg};
 use glam::{DQuat, DVec3};
 use proptest::prelude::*;
@@ -44,45 +45,13 @@ fn far_from_the_origin_the_answer_is_right_or_refused() {
     }
 }
 
-/// OBJ text of an axis-aligned box.
-fn obj_box(min: DVec3, max: DVec3) -> String {
-    let mut s = String::new();
-    for i in 0..8 {
-        let p = DVec3::new(
-            if i & 4 == 0 { min.x } else { max.x },
-            if i & 2 == 0 { min.y } else { max.y },
-            if i & 1 == 0 { min.z } else { max.z },
-        );
-        s += &format!("v {:?} {:?} {:?}\n", p.x, p.y, p.z);
-    }
-    for f in [
-        [1, 2, 4, 3],
-        [5, 7, 8, 6],
-        [1, 5, 6, 2],
-        [3, 4, 8, 7],
-        [1, 3, 7, 5],
-        [2, 6, 8, 4],
-    ] {
-        s += &format!("f {} {} {} {}\n", f[0], f[1], f[2], f[3]);
-    }
-    s
-}
-
 #[test]
 fn far_cubes_on_the_command_line_exit_2_with_the_reason() {
     let dir = Scratch::new("far-cubes");
     for x in [1e8, 1e11, 1e12, 1e15] {
         let (a, b) = (dir.path("a.obj"), dir.path("b.obj"));
-        fs::write(
-            &a,
-            obj_box(DVec3::new(x, 0.0, 0.0), DVec3::new(x + 1.0, 1.0, 1.0)),
-        )
-        .unwrap();
-        fs::write(
-            &b,
-            obj_box(DVec3::new(x + 0.5, 0.0, 0.0), DVec3::new(x + 1.5, 1.0, 1.0)),
-        )
-        .unwrap();
+        fs::write(&a, box_obj_text([x, 0.0, 0.0], [x + 1.0, 1.0, 1.0])).unwrap();
+        fs::write(&b, box_obj_text([x + 0.5, 0.0, 0.0], [x + 1.5, 1.0, 1.0])).unwrap();
         let out = dir.path(&format!("out{x:e}.obj"));
         let run = bspcsg([
             "union".as_ref(),

@@ -89,3 +89,24 @@ pub fn obj_box_mesh(min: bspcsg::glam::DVec3, max: bspcsg::glam::DVec3) -> Mesh 
         .collect();
     Mesh::new((0..8).map(p).collect(), triangles)
 }
+
+/// OBJ text of an axis-aligned box, as a file would bring it: 8 corners written with full
+/// precision and 6 outward-facing quads.
+pub fn box_obj_text(min: [f64; 3], max: [f64; 3]) -> String {
+    let mut s = String::new();
+    for i in 0..8 {
+        let c = |k: usize, bit: usize| if i & bit == 0 { min[k] } else { max[k] };
+        s += &format!("v {:?} {:?} {:?}\n", c(0, 4), c(1, 2), c(2, 1));
+    }
+    for f in [
+        [1, 2, 4, 3],
+        [5, 7, 8, 6],
+        [1, 5, 6, 2],
+        [3, 4, 8, 7],
+        [1, 3, 7, 5],
+        [2, 6, 8, 4],
+    ] {
+        s += &format!("f {} {} {} {}\n", f[0], f[1], f[2], f[3]);
+    }
+    s
+}
