@@ -6,7 +6,7 @@ use bspcsg::{BoolOp, FromMeshOptions, Material, MeshDefect, boolean_all, read_so
 
 use crate::cli::BooleanArgs;
 use crate::failure::Failure;
-use crate::output::{Expect, finish, output_target, protect_inputs};
+use crate::output::{Expect, finish, output_target, protect_inputs, warn_if_empty_input};
 use crate::progress::Progress;
 
 /// `union`, `intersection`, `difference`.
@@ -39,6 +39,7 @@ pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Re
             f.message.push_str(hint.unwrap_or_default());
             f
         })?;
+        warn_if_empty_input(path, solid.is_empty(), progress);
         // Source ids record which input each output triangle came from.
         let id = u32::try_from(i).map_err(|_| Failure::usage_or_io("too many inputs"))?;
         solids.push(solid.with_source(id));

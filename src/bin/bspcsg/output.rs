@@ -147,10 +147,22 @@ pub(crate) fn finish(
             out.display(),
             report.triangles,
             report.vertices,
-            report.volume
+            // An empty mesh's volume sums no terms: -0.0 only by the sign of nothing.
+            report.volume + 0.0
         ));
     }
     Ok(())
+}
+
+/// Warns that an input holds no triangles: it is read as the empty mesh (a well-formed file
+/// with no faces, as written for an empty result), which is allowed but rarely meant.
+pub(crate) fn warn_if_empty_input(path: &Path, empty: bool, progress: &Progress) {
+    if empty {
+        progress.println(&format!(
+            "bspcsg: warning: {} holds no triangles: read as the empty mesh",
+            path.display()
+        ));
+    }
 }
 
 /// Prints to stdout. A closed pipe (`bspcsg info x | head -1`) is not an error.
