@@ -880,3 +880,25 @@ fn small_messages_tiny_cubes_and_unbounded_scenes() {
         run.stderr
     );
 }
+
+/// A fine watertight sphere 10¹² from the origin: its coordinates round to 1.2·10⁻⁴, its
+/// triangles (about 0.025 across) keep their area, and `info` calls it a closed 2-manifold with
+/// no degenerate triangles (it counted 8,704 of 16,128 as zero area before).
+#[test]
+fn a_watertight_mesh_far_from_the_origin_has_no_degenerate_triangles() {
+    let dir = Scratch::new("far-sphere");
+    let mut mesh = bspcsg::Solid::sphere(1.0, 256, 128).unwrap().to_mesh();
+    for p in &mut mesh.positions {
+        *p += bspcsg::glam::DVec3::splat(1e12);
+    }
+    let path = dir.path("far.obj");
+    bspcsg::write_mesh(&path, &mesh, &[]).unwrap();
+    let run = bspcsg(["info".as_ref(), "--json".as_ref(), path.as_os_str()]).ok();
+    let json: serde_json::Value = serde_json::from_str(&run.stdout).unwrap();
+    assert_eq!(json["triangles"], mesh.triangle_count(), "{json}");
+    assert_eq!(json["degenerate_triangles"], 0, "{json}");
+    assert_eq!(json["watertight"], true, "{json}");
+    assert_eq!(json["genus"], 0, "{json}");
+    let report = read_mesh(&path).unwrap().report();
+    assert!(report.is_closed_manifold(), "{report}");
+}
