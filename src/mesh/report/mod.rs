@@ -4,6 +4,7 @@
 //! Everything rests on the edge table of [`crate::topology`]; components and vertex fans then
 //! come from union-find over triangles and triangle corners.
 
+mod checked;
 mod display;
 mod shells;
 
