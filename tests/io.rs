@@ -801,3 +801,40 @@ fn obj_concave_ngon_caps_keep_their_area() {
     assert!((cut.area() - 12.0).abs() < 1e-12, "{}", cut.area());
     fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn encode_mesh_gives_the_bytes_write_mesh_writes() {
+    let dir = scratch("encode");
+    let mesh = two_part();
+    let mats = materials();
+    for format in Format::ALL {
+        for materials in [&mats[..], &[]] {
+            let path = dir.join(format!("part.{format}"));
+            let encoded = bspcsg::encode_mesh(&path, &mesh, materials, format).unwrap();
+            assert_eq!(encoded[0].path, path, "{format}: the main file comes first");
+            let expected_files = match format {
+                Format::Gltf => 2,
+                Format::Obj if !materials.is_empty() => 2,
+                _ => 1,
+            };
+            assert_eq!(encoded.len(), expected_files, "{format}");
+            write_mesh_as(&path, &mesh, materials, format).unwrap();
+            for file in &encoded {
+                assert_eq!(file.path.parent(), Some(dir.as_path()));
+                let written = fs::read(&file.path).unwrap();
+                assert_eq!(written, file.bytes, "{}", file.path.display());
+            }
+            // What was encoded reads back as the mesh.
+            let back = read_mesh(&path).unwrap();
+            assert_eq!(back.triangle_count(), mesh.triangle_count(), "{format}");
+            assert!(rel(back.volume(), mesh.volume()) < 1e-5, "{format}");
+            for file in &encoded {
+                fs::remove_file(&file.path).unwrap();
+            }
+        }
+    }
+    // Nothing is written by encoding, and a companion that would be the file itself is refused.
+    let clash = bspcsg::encode_mesh(dir.join("part.bin"), &mesh, &[], Format::Gltf);
+    assert!(matches!(clash, Err(Error::Io { .. })), "{clash:?}");
+    assert!(files_in(&dir).is_empty(), "{:?}", files_in(&dir));
+}

@@ -7,7 +7,6 @@
 //! request is valid, and then only by an atomic rename inside the scene's folder.
 
 use std::path::{Component, Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 use glam::DVec3;
@@ -15,7 +14,7 @@ use serde_json::{Map, Value, json};
 
 use super::glsl::fragment_shader_with;
 use crate::error::{Error, Result};
-use crate::io::{Format, write_file_atomically, write_mesh_as};
+use crate::io::{Format, OutFile, encode_mesh, write_file_atomically, write_mesh_as};
 use crate::mesh::Mesh;
 use crate::raymarch::{Camera, CheckOptions, CheckReport, View, check_mesh};
 use crate::sdf::{BakeOptions, Projection, Scene, TessellationOptions};
@@ -509,39 +508,29 @@ fn mesh_report(mesh: &Mesh, seconds: f64) -> Value {
     })
 }
 
-/// Distinguishes the scratch folders of concurrent exports.
-static SCRATCH: AtomicU64 = AtomicU64::new(0);
-
-/// A mesh file's bytes, by the crate's writers into a scratch folder. A `.gltf` gets its
-/// buffer embedded as a `data:` URI (one download); an OBJ goes without its `.mtl`.
+/// A mesh file's bytes, encoded in memory by the crate's writers. A `.gltf` gets its buffer
+/// embedded as a `data:` URI (one download); an OBJ goes without its `.mtl`.
 fn mesh_bytes(mesh: &Mesh, scene: &Scene, format: Format) -> Result<Vec<u8>> {
-    let n = SCRATCH.fetch_add(1, Ordering::Relaxed);
-    let dir = std::env::temp_dir().join(format!("bspcsg-edit-{}-{n}", std::process::id()));
-    let io = |source| Error::Io {
-        path: dir.clone(),
-        source,
+    let materials = if format == Format::Obj {
+        &[][..]
+    } else {
+        scene.materials()
     };
-    std::fs::create_dir_all(&dir).map_err(io)?;
-    let result = (|| {
-        let file = dir.join(format!("mesh.{}", format.extension()));
-        let materials = if format == Format::Obj {
-            &[][..]
-        } else {
-            scene.materials()
-        };
-        write_mesh_as(&file, mesh, materials, format)?;
-        let mut bytes = std::fs::read(&file).map_err(io)?;
-        if format == Format::Gltf {
-            bytes = embed_buffers(&bytes, &dir).map_err(io)?;
-        }
-        Ok(bytes)
-    })();
-    let _ = std::fs::remove_dir_all(&dir);
-    result
+    let name = format!("mesh.{}", format.extension());
+    let mut files = encode_mesh(&name, mesh, materials, format)?.into_iter();
+    let main = files.next().map(|f| f.bytes).unwrap_or_default();
+    if format != Format::Gltf {
+        return Ok(main);
+    }
+    embed_buffers(&main, &files.collect::<Vec<_>>()).map_err(|source| Error::Io {
+        path: PathBuf::from(name),
+        source,
+    })
 }
 
-/// Rewrites a `.gltf`'s relative buffer URIs (files in `dir`) as base64 `data:` URIs.
-fn embed_buffers(gltf: &[u8], dir: &Path) -> std::io::Result<Vec<u8>> {
+/// Rewrites a `.gltf`'s relative buffer URIs as base64 `data:` URIs of the `companions` they
+/// name.
+fn embed_buffers(gltf: &[u8], companions: &[OutFile]) -> std::io::Result<Vec<u8>> {
     use base64::Engine as _;
     let mut doc: Value = serde_json::from_slice(gltf).map_err(std::io::Error::other)?;
     if let Some(Value::Array(buffers)) = doc.get_mut("buffers") {
@@ -549,8 +538,13 @@ fn embed_buffers(gltf: &[u8], dir: &Path) -> std::io::Result<Vec<u8>> {
             if let Some(Value::String(uri)) = b.get("uri").cloned()
                 && !uri.starts_with("data:")
             {
-                let data = std::fs::read(dir.join(&uri))?;
-                let enc = base64::engine::general_purpose::STANDARD.encode(data);
+                let file = companions
+                    .iter()
+                    .find(|f| f.path == Path::new(&uri))
+                    .ok_or_else(|| {
+                        std::io::Error::other(format!("the glTF names a buffer `{uri}` it lacks"))
+                    })?;
+                let enc = base64::engine::general_purpose::STANDARD.encode(&file.bytes);
                 b["uri"] = Value::String(format!("data:application/octet-stream;base64,{enc}"));
             }
         }
@@ -728,5 +722,27 @@ mod tests {
             out.starts_with("{\n  \"tree\": {\n    \"op\": \"union\","),
             "{out}"
         );
+    }
+
+    #[test]
+    fn export_bytes_read_back_in_every_format() {
+        let scene = Scene::from_json_str(
+            r#"{"kind": "sdf_scene", "version": 1, "materials": {"red": [1, 0, 0]},
+                "tree": {"kind": "sdf_primitive", "data": {"primitive_type": "box",
+                         "size": [1, 2, 3], "material": "red"}}}"#,
+        )
+        .unwrap();
+        let mesh = scene
+            .to_solid(&TessellationOptions::default())
+            .unwrap()
+            .to_mesh();
+        for format in Format::ALL {
+            let bytes = mesh_bytes(&mesh, &scene, format).unwrap();
+            // One file: a `.gltf`'s buffer travels inside it, so it reads without a folder.
+            let name = Path::new("/nonexistent").join(format!("m.{format}"));
+            let back = crate::io::read_mesh_from_bytes(&name, &bytes, format).unwrap();
+            assert_eq!(back.triangle_count(), mesh.triangle_count(), "{format}");
+            assert!((back.volume() - 6.0).abs() < 1e-9, "{format}");
+        }
     }
 }
