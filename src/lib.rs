@@ -11,7 +11,8 @@
 //! let hole = Solid::cylinder(0.3, 2.0, 48)?;
 //! let part = &block - &hole;
 //! assert!(part.volume() < block.volume());
-//! let mesh = part.to_mesh();
+//! // Checked: a closed 2-manifold within the precision contract, or an error saying why not.
+//! let mesh = part.to_checked_mesh()?;
 //! assert!(mesh.triangle_count() > 0);
 //! # Ok::<(), bspcsg::Error>(())
 //! ```

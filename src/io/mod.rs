@@ -18,6 +18,7 @@ mod atomic;
 mod gltf;
 mod obj;
 mod stl;
+mod triangles;
 
 pub use atomic::cleanup_interrupted_writes;
 use atomic::write_atomically;
@@ -137,12 +138,19 @@ impl FromStr for Format {
 /// The result is welded (bit-identical positions share one vertex), every triangle has
 /// source id 0, and triangles that repeat a vertex after welding are dropped.
 ///
+/// A well-formed file with no faces at all — what the writers produce for an empty result:
+/// an OBJ of comments and statements only, an STL of no facets, a glTF whose scenes draw no
+/// triangles — is the empty mesh, so that an empty result written and read back is the empty
+/// solid again (check [`Mesh::is_empty`] to warn about it).
+///
 /// # Errors
 ///
 /// [`Error::Unsupported`] for an unknown extension or an unsupported feature of the format,
 /// [`Error::Io`] when the file (or a glTF's external buffer) cannot be read, and
 /// [`Error::Parse`] naming the file (and, for OBJ and ASCII STL, the line) when the content is
-/// malformed, has non-finite coordinates, is empty or holds no triangles.
+/// malformed or has non-finite coordinates; when the file is empty (zero bytes or only
+/// whitespace: a write that never happened, not an empty mesh); when every triangle repeats a
+/// vertex; and for an OBJ with vertices but no faces (points, not a surface).
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<Mesh> {
     let path = path.as_ref();
     read_mesh_as(path, Format::from_path(path)?)
@@ -183,15 +191,11 @@ pub fn read_mesh_from_bytes(path: &Path, bytes: &[u8], format: Format) -> Result
     if bytes.iter().all(u8::is_ascii_whitespace) {
         return Err(parse_error(path, None, "the file is empty"));
     }
-    let mesh = match format {
-        Format::Obj => obj::read(path, bytes)?,
-        Format::Stl => stl::read(path, bytes)?,
-        Format::Gltf | Format::Glb => gltf::read(path, bytes)?,
-    };
-    if mesh.is_empty() {
-        return Err(parse_error(path, None, "the file holds no triangles"));
+    match format {
+        Format::Obj => obj::read(path, bytes),
+        Format::Stl => stl::read(path, bytes),
+        Format::Gltf | Format::Glb => gltf::read(path, bytes),
     }
-    Ok(mesh)
 }
 
 /// Reads a mesh file (format by extension, as [`read_mesh`]) and makes a [`Solid`] of it with
