@@ -835,6 +835,117 @@ fn scene_exports_over_the_polygon_budget_are_refused_with_a_tolerance_that_fits(
     assert!(!out.exists());
 }
 
+/// The BSP route's boolean work (polygon corners × levels of the balanced union) is
+/// estimated before anything is tessellated: 300 references to one 10,000-point polygon and
+/// 50,000 overlapping boxes are refused at once, saying what to change; so are four unit
+/// spheres at a tolerance the polygon budget lets through, with a tolerance that fits.
+#[test]
+fn scene_exports_over_the_work_budget_are_refused_before_any_work() {
+    let dir = Scratch::new("work-budget");
+    let points: Vec<String> = (0..10_000)
+        .map(|i| {
+            let a = std::f64::consts::TAU * f64::from(i) / 10_000.0;
+            let r = 1.0 + 0.05 * (37.0 * a).sin();
+            format!("[{:.6},{:.6}]", r * a.cos(), r * a.sin())
+        })
+        .collect();
+    let refs: Vec<String> = (0..300)
+        .map(|i| {
+            format!(
+                r#"{{"op":"extrude","source_2d_sdf":"p","extrude_depth":1,"pos":[{},{},0]}}"#,
+                0.01 * f64::from(i),
+                0.013 * f64::from(i)
+            )
+        })
+        .collect();
+    let scene = dir.path("refs.json");
+    fs::write(
+        &scene,
+        format!(
+            r#"{{"kind":"sdf_scene","version":1,"sdf_2d":{{"p":{{"type":"polygon","points":[{}]}}}},"tree":{{"op":"union","children":[{}]}}}}"#,
+            points.join(","),
+            refs.join(",")
+        ),
+    )
+    .unwrap();
+    let out = dir.path("refs.obj");
+    let t = Instant::now();
+    let run = bspcsg([
+        "export".as_ref(),
+        scene.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(1);
+    assert!(
+        t.elapsed() < Duration::from_secs(5),
+        "refused before any work"
+    );
+    for needle in [
+        "refs.json",
+        "300 primitives",
+        "18000000 polygon corners",
+        "budget of 16777216",
+        "2D shapes of fewer points",
+    ] {
+        assert!(run.stderr.contains(needle), "{needle}: {}", run.stderr);
+    }
+    assert!(!out.exists());
+    // 50,000 boxes in one union: 1.2 million corners over 16 levels.
+    let boxes: Vec<String> = (0..50_000)
+        .map(|i| {
+            let f = f64::from(i);
+            format!(
+                r#"{{"kind":"sdf_primitive","pos":[{},{},{}],"data":{{"primitive_type":"box","size":[1,1,1]}}}}"#,
+                (f * 0.618).fract() * 5.0,
+                (f * 0.414).fract() * 5.0,
+                (f * 0.732).fract() * 5.0
+            )
+        })
+        .collect();
+    let s = bspcsg::Scene::from_json_str(&format!(
+        r#"{{"op":"union","children":[{}]}}"#,
+        boxes.join(",")
+    ))
+    .unwrap();
+    let t = Instant::now();
+    let err = s
+        .to_solid(&bspcsg::TessellationOptions::default())
+        .unwrap_err();
+    assert!(t.elapsed() < Duration::from_secs(5));
+    assert!(
+        err.to_string().contains("about 19200000 units of work"),
+        "{err}"
+    );
+    // Four unit spheres at 2.4·10⁻⁶: within the polygon budget (4.1 million), not the work.
+    let sphere = |x: f64| {
+        format!(
+            r#"{{"kind":"sdf_primitive","pos":[{x},0,0],"data":{{"primitive_type":"sphere","radius":1}}}}"#
+        )
+    };
+    let s = bspcsg::Scene::from_json_str(&format!(
+        r#"{{"op":"union","children":[{},{},{},{}]}}"#,
+        sphere(0.0),
+        sphere(0.5),
+        sphere(1.0),
+        sphere(1.5)
+    ))
+    .unwrap();
+    let err = s
+        .to_solid(&bspcsg::TessellationOptions::with_tolerance(2.4e-6))
+        .unwrap_err();
+    let message = err.to_string();
+    assert!(message.contains("units of work"), "{message}");
+    let enough: f64 = message
+        .split("a tolerance of at least ")
+        .nth(1)
+        .and_then(|r| r.split(',').next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(enough > 2.4e-6 && enough < 1e-5, "{enough}");
+}
+
 #[test]
 fn a_byte_order_mark_is_skipped_in_obj_and_scene_files() {
     let dir = Scratch::new("bom");
