@@ -11,7 +11,7 @@ use crate::raymarch::bvh::MeshBvh;
 use crate::raymarch::camera::{Camera, framing_bounds};
 use crate::raymarch::image::{Rgb8, encode_srgb};
 use crate::raymarch::march::SceneTracer;
-use crate::raymarch::render::{RenderOptions, TILE, Tile};
+use crate::raymarch::render::{RenderOptions, Tile};
 use crate::sdf::Scene;
 
 pub(super) struct RayViews {
@@ -52,16 +52,7 @@ pub(super) fn ray_views(
         opts_v.profile.max_distance = opts_v.profile.max_distance.max(reach);
         let frame = camera.frame()?;
         let tracer = SceneTracer::new(scene, frame, &opts_v);
-        let tiles: Vec<Tile> = (0..n.div_ceil(TILE))
-            .flat_map(|ty| {
-                (0..n.div_ceil(TILE)).map(move |tx| Tile {
-                    x0: tx * TILE,
-                    y0: ty * TILE,
-                    x1: ((tx + 1) * TILE).min(n),
-                    y1: ((ty + 1) * TILE).min(n),
-                })
-            })
-            .collect();
+        let tiles = Tile::grid(n, n);
         let pairs: Vec<(Tile, Vec<PixelPair>)> = tiles
             .par_iter()
             .map(|t| {
