@@ -111,16 +111,15 @@ pub enum Error {
 
     /// A solid's mesh is not a closed 2-manifold though it should be (the result of booleans
     /// of solids): a fault of the kernel on hard input, reported by
-    /// [`Solid::to_checked_mesh`](crate::Solid::to_checked_mesh) instead of passed on. `mesh`
-    /// is the result as it is, for a caller that wants it anyway. Remedy: move or scale the
-    /// operands slightly (the fault lies where nearly coincident features meet), or report
-    /// the input.
+    /// [`Solid::to_checked_mesh`](crate::Solid::to_checked_mesh) instead of passed on. A caller
+    /// that wants the mesh as it is anyway takes [`Solid::to_mesh`](crate::Solid::to_mesh).
+    /// Remedy: move or scale the operands slightly (the fault lies where nearly coincident
+    /// features meet), or report the input.
     #[error("the result is not a closed 2-manifold: {report}")]
     BrokenResult {
-        /// The mesh's report: what is wrong, with counts.
-        report: Box<crate::mesh::MeshReport>,
-        /// The mesh itself.
-        mesh: Box<crate::mesh::Mesh>,
+        /// The mesh's report as text: what is wrong, with counts. (Text, not the `MeshReport`
+        /// itself: errors sit below meshes in the crate's module order.)
+        report: String,
     },
 
     /// A scene document is invalid. `json_path` locates the fault, e.g. `$.children[2].data.radius`;

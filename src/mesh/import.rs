@@ -6,7 +6,6 @@ use crate::error::{Error, MeshDefect, Result};
 use crate::geom::is_zero_area;
 use crate::hash::{FxBuild, FxHashMap};
 use crate::polygon::{Polygon, Vertices};
-use crate::solid::Solid;
 use crate::topology::{check_closed, check_face_indices, check_finite};
 
 /// How [`Solid::from_mesh_with`](crate::Solid::from_mesh_with) treats its input. The default is strict; see
@@ -94,21 +93,6 @@ impl FromMeshOptions {
     pub fn with_merge_coplanar(mut self, merge: bool) -> Self {
         self.merge_coplanar = merge;
         self
-    }
-}
-
-/// The solid bounded by `mesh`, after the checks [`FromMeshOptions`] asks for; crossing
-/// shells united where [`union_shells`](FromMeshOptions::union_shells) says so.
-pub(crate) fn solid_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Result<Solid> {
-    match polygons_from_mesh(mesh, options) {
-        Err(Error::InvalidMesh {
-            defect: MeshDefect::SelfIntersecting { .. },
-            ..
-        }) if options.union_shells => {
-            let crossing = super::self_intersect::crossing_pairs(&mesh.positions, &mesh.triangles);
-            super::overlapping::union_of_shells(mesh, options, &crossing)
-        }
-        other => other.map(Solid::from_polygons),
     }
 }
 

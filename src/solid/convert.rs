@@ -3,7 +3,7 @@
 use super::Solid;
 use crate::error::Result;
 use crate::mesh::weld::Welder;
-use crate::mesh::{FromMeshOptions, Mesh, import, repair};
+use crate::mesh::{FromMeshOptions, Mesh, repair};
 
 impl Solid {
     /// The solid as an indexed triangle mesh that is a closed 2-manifold whenever the solid is
@@ -88,7 +88,7 @@ impl Solid {
     /// [`Error::InvalidMesh`](crate::Error::InvalidMesh) with the [`MeshDefect`](crate::MeshDefect) in the cases listed
     /// above.
     pub fn from_mesh_with(mesh: &Mesh, options: &FromMeshOptions) -> Result<Solid> {
-        import::solid_from_mesh(mesh, options)
+        super::overlapping::solid_from_mesh(mesh, options)
     }
 }
 

@@ -9,9 +9,11 @@
 //! - [`boolean`]: the one boolean operation, and [`ops`]: its named wrappers and operators.
 
 mod boolean;
+mod checked;
 mod convert;
 mod measure;
 mod ops;
+mod overlapping;
 mod primitives;
 mod transform;
 

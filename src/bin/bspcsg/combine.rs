@@ -2,13 +2,11 @@
 
 use std::path::{Path, PathBuf};
 
-use bspcsg::{BoolOp, Error, FromMeshOptions, Material, MeshDefect, boolean_all, read_solid};
+use bspcsg::{BoolOp, FromMeshOptions, Material, MeshDefect, boolean_all, read_solid};
 
 use crate::cli::BooleanArgs;
 use crate::failure::Failure;
-use crate::output::{
-    Expect, finish, not_written, output_target, protect_inputs, warn_if_empty_input,
-};
+use crate::output::{Expect, finish, output_target, protect_inputs, warn_if_empty_input};
 use crate::progress::Progress;
 
 /// `union`, `intersection`, `difference`.
@@ -54,23 +52,15 @@ pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Re
     progress.step(format!("combining {} solids", solids.len()));
     let solid = boolean_all(solids, op);
     progress.step("repairing (welding, closing T-junctions)");
-    // Inputs let in open may give an open result; solids must give a solid.
-    if args.allow_open {
-        solid.check_precision()?;
-        return finish(
-            out,
-            format,
-            &solid.to_mesh(),
-            &materials,
-            Expect::Any,
-            progress,
-        );
-    }
-    let mesh = solid.to_checked_mesh().map_err(|e| match e {
-        Error::BrokenResult { report, .. } => not_written(out, &report),
-        e => e.into(),
-    })?;
-    finish(out, format, &mesh, &materials, Expect::Closed, progress)
+    // Inputs let in open may give an open result; solids must give a solid (`finish` refuses
+    // anything else: Solid::to_checked_mesh's promise, with the report computed once).
+    solid.check_precision()?;
+    let expect = if args.allow_open {
+        Expect::Any
+    } else {
+        Expect::Closed
+    };
+    finish(out, format, &solid.to_mesh(), &materials, expect, progress)
 }
 
 /// The material that marks input `i`'s triangles: named after its file, coloured from a small

@@ -4,7 +4,6 @@
 //! Everything rests on the edge table of [`crate::topology`]; components and vertex fans then
 //! come from union-find over triangles and triangle corners.
 
-mod checked;
 mod display;
 mod shells;
 

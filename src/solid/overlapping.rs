@@ -1,5 +1,5 @@
 //! Overlapping shells taken as their union, when asked
-//! ([`FromMeshOptions::union_shells`](super::FromMeshOptions::union_shells)).
+//! ([`FromMeshOptions::union_shells`](crate::FromMeshOptions::union_shells)).
 //!
 //! A file of two boxes written into one mesh is closed and manifold but bounds no solid: its
 //! shells cross. What its author meant is mostly their union. Each shell (with the cavities
@@ -9,12 +9,29 @@
 
 use glam::DVec3;
 
-use super::Mesh;
-use super::import::{FromMeshOptions, polygons_from_mesh};
 use crate::disjoint_sets::DisjointSets;
 use crate::error::{Error, MeshDefect, Result};
-use crate::solid::{BoolOp, Containment, PointClassifier, Solid, boolean_all};
+use crate::mesh::Mesh;
+use crate::mesh::import::{FromMeshOptions, polygons_from_mesh};
+use crate::mesh::self_intersect::crossing_pairs;
 use crate::topology::EdgeTable;
+
+use super::{BoolOp, Containment, PointClassifier, Solid, boolean_all};
+
+/// The solid bounded by `mesh`, after the checks [`FromMeshOptions`] asks for; crossing
+/// shells united where [`union_shells`](FromMeshOptions::union_shells) says so.
+pub(crate) fn solid_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Result<Solid> {
+    match polygons_from_mesh(mesh, options) {
+        Err(Error::InvalidMesh {
+            defect: MeshDefect::SelfIntersecting { .. },
+            ..
+        }) if options.union_shells => {
+            let crossing = crossing_pairs(&mesh.positions, &mesh.triangles);
+            union_of_shells(mesh, options, &crossing)
+        }
+        other => other.map(Solid::from_polygons),
+    }
+}
 
 /// The union of the shells of a closed mesh whose shells cross (`crossing`: its crossing
 /// triangle pairs, not empty), each shell with its cavities a solid of its own.
