@@ -109,6 +109,20 @@ pub enum Error {
         eps: f64,
     },
 
+    /// A solid's mesh is not a closed 2-manifold though it should be (the result of booleans
+    /// of solids): a fault of the kernel on hard input, reported by
+    /// [`Solid::to_checked_mesh`](crate::Solid::to_checked_mesh) instead of passed on. `mesh`
+    /// is the result as it is, for a caller that wants it anyway. Remedy: move or scale the
+    /// operands slightly (the fault lies where nearly coincident features meet), or report
+    /// the input.
+    #[error("the result is not a closed 2-manifold: {report}")]
+    BrokenResult {
+        /// The mesh's report: what is wrong, with counts.
+        report: Box<crate::mesh::MeshReport>,
+        /// The mesh itself.
+        mesh: Box<crate::mesh::Mesh>,
+    },
+
     /// A scene document is invalid. `json_path` locates the fault, e.g. `$.children[2].data.radius`;
     /// `file` names the document where it was read from a file.
     #[error("{}{json_path}: {message}", file.as_ref().map(|f| format!("{}: ", f.display())).unwrap_or_default())]

@@ -12,7 +12,7 @@
 //! Neither map type is ever iterated where its order would reach the output, so the random keys
 //! never make results differ between runs.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 use std::hash::{BuildHasher, BuildHasherDefault};
 use std::sync::OnceLock;
 
@@ -39,7 +39,6 @@ impl std::hash::Hasher for FxHasher {
 
 pub(crate) type FxBuild = BuildHasherDefault<FxHasher>;
 pub(crate) type FxHashMap<K, V> = HashMap<K, V, FxBuild>;
-pub(crate) type FxHashSet<K> = HashSet<K, FxBuild>;
 
 /// The full 128-bit product of two words, folded to 64 bits: every input bit reaches every
 /// output bit, and with a secret factor the result cannot be steered.
@@ -123,6 +122,7 @@ pub(crate) fn key(p: DVec3) -> [u64; 3] {
 
 #[cfg(test)]
 mod tests {
+    use std::collections::HashSet;
     use std::hash::BuildHasher;
 
     use super::*;

@@ -11,7 +11,8 @@
 //! let hole = Solid::cylinder(0.3, 2.0, 48)?;
 //! let part = &block - &hole;
 //! assert!(part.volume() < block.volume());
-//! let mesh = part.to_mesh();
+//! // Checked: a closed 2-manifold within the precision contract, or an error saying why not.
+//! let mesh = part.to_checked_mesh()?;
 //! assert!(mesh.triangle_count() > 0);
 //! # Ok::<(), bspcsg::Error>(())
 //! ```
@@ -115,9 +116,9 @@ mod topology;
 pub use error::{Error, MeshDefect, Result};
 pub use geom::{Aabb, MAX_COORDINATE, Plane, Side, Tolerance};
 pub use io::{
-    Format, MAX_BUFFER_BYTES, MAX_READ_TRIANGLES, ParseFormatError, cleanup_interrupted_writes,
-    read_mesh, read_mesh_as, read_mesh_from_bytes, read_solid, referenced_files, write_mesh,
-    write_mesh_as,
+    Format, MAX_BUFFER_BYTES, MAX_READ_TRIANGLES, OutFile, ParseFormatError,
+    cleanup_interrupted_writes, encode_mesh, read_mesh, read_mesh_as, read_mesh_from_bytes,
+    read_solid, referenced_files, write_mesh, write_mesh_as,
 };
 pub use mesh::{FromMeshOptions, Material, Mesh, MeshReport, ShellReport};
 pub use polygon::{Polygon, Split};

@@ -766,24 +766,72 @@ fn a_repeated_json_key_is_refused_naming_its_path() {
     assert!(run.stderr.contains("duplicate key"), "{}", run.stderr);
 }
 
+/// An empty result is written with a warning, and reads back as the empty solid with a
+/// warning: `A − A` round-trips through every format and `A ∪ ∅ = A`, `A − ∅ = A`, `∅ − A = ∅`.
 #[test]
-fn small_messages_empty_results_tiny_cubes_and_unbounded_scenes() {
-    let dir = Scratch::new("small-messages");
-    // An empty result is written, with a warning.
-    let (a, b) = (dir.path("a.obj"), dir.path("b.obj"));
+fn an_empty_result_written_and_read_back_is_the_empty_solid() {
+    let dir = Scratch::new("empty-results");
+    let a = dir.path("a.obj");
     fs::write(&a, box_obj_text([0.0; 3], [1.0; 3])).unwrap();
-    fs::write(&b, box_obj_text([5.0; 3], [6.0; 3])).unwrap();
-    let out = dir.path("empty.obj");
-    let run = bspcsg([
-        "intersection".as_ref(),
-        a.as_os_str(),
-        b.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-    ])
-    .ok();
-    assert!(run.stderr.contains("the result is empty"), "{}", run.stderr);
-    assert!(out.exists());
+    for ext in ["obj", "stl", "gltf", "glb"] {
+        let empty = dir.path(&format!("a-minus-a.{ext}"));
+        let run = bspcsg([
+            "difference".as_ref(),
+            a.as_os_str(),
+            a.as_os_str(),
+            "-o".as_ref(),
+            empty.as_os_str(),
+        ])
+        .ok();
+        assert!(run.stderr.contains("the result is empty"), "{}", run.stderr);
+        assert!(
+            run.stderr.contains("0 triangles, 0 vertices, volume 0\n"),
+            "{}",
+            run.stderr
+        );
+        let run = bspcsg(["info".as_ref(), "--json".as_ref(), empty.as_os_str()]).ok();
+        assert!(
+            run.stderr.contains(&format!(
+                "a-minus-a.{ext} holds no triangles: read as the empty mesh"
+            )),
+            "{}",
+            run.stderr
+        );
+        let json: serde_json::Value = serde_json::from_str(&run.stdout).unwrap();
+        assert_eq!(json["triangles"], 0, "{json}");
+        assert_eq!(json["volume"], 0.0, "{json}");
+        for (op, first, second, volume) in [
+            ("union", &a, &empty, 1.0),
+            ("difference", &a, &empty, 1.0),
+            ("difference", &empty, &a, 0.0),
+            ("intersection", &a, &empty, 0.0),
+        ] {
+            let out = dir.path(&format!("{op}.obj"));
+            let run = bspcsg([
+                op.as_ref(),
+                first.as_os_str(),
+                second.as_os_str(),
+                "-o".as_ref(),
+                out.as_os_str(),
+            ])
+            .ok();
+            assert!(
+                run.stderr.contains("read as the empty mesh"),
+                "{}",
+                run.stderr
+            );
+            let mesh = read_mesh(&out).unwrap();
+            assert_eq!(mesh.volume(), volume, "{op} {ext}");
+            if volume > 0.0 {
+                assert!(mesh.report().is_closed_manifold(), "{op} {ext}");
+            }
+        }
+    }
+}
+
+#[test]
+fn small_messages_tiny_cubes_and_unbounded_scenes() {
+    let dir = Scratch::new("small-messages");
     // An empty file is called empty (not a parser's "EOF at column 0"); a missing buffer names
     // the document that needs it.
     let glb = dir.path("empty.glb");
@@ -831,4 +879,26 @@ fn small_messages_empty_results_tiny_cubes_and_unbounded_scenes() {
         "{}",
         run.stderr
     );
+}
+
+/// A fine watertight sphere 10¹² from the origin: its coordinates round to 1.2·10⁻⁴, its
+/// triangles (about 0.025 across) keep their area, and `info` calls it a closed 2-manifold with
+/// no degenerate triangles (it counted 8,704 of 16,128 as zero area before).
+#[test]
+fn a_watertight_mesh_far_from_the_origin_has_no_degenerate_triangles() {
+    let dir = Scratch::new("far-sphere");
+    let mut mesh = bspcsg::Solid::sphere(1.0, 256, 128).unwrap().to_mesh();
+    for p in &mut mesh.positions {
+        *p += bspcsg::glam::DVec3::splat(1e12);
+    }
+    let path = dir.path("far.obj");
+    bspcsg::write_mesh(&path, &mesh, &[]).unwrap();
+    let run = bspcsg(["info".as_ref(), "--json".as_ref(), path.as_os_str()]).ok();
+    let json: serde_json::Value = serde_json::from_str(&run.stdout).unwrap();
+    assert_eq!(json["triangles"], mesh.triangle_count(), "{json}");
+    assert_eq!(json["degenerate_triangles"], 0, "{json}");
+    assert_eq!(json["watertight"], true, "{json}");
+    assert_eq!(json["genus"], 0, "{json}");
+    let report = read_mesh(&path).unwrap().report();
+    assert!(report.is_closed_manifold(), "{report}");
 }

@@ -9,8 +9,8 @@ use std::path::{Path, PathBuf};
 
 use base64::Engine as _;
 use bspcsg::{
-    Error, Format, Material, Mesh, MeshDefect, Solid, read_mesh, read_mesh_as, write_mesh,
-    write_mesh_as,
+    Error, Format, FromMeshOptions, Material, Mesh, MeshDefect, Solid, read_mesh, read_mesh_as,
+    read_solid, write_mesh, write_mesh_as,
 };
 use common::models;
 use glam::DVec3;
@@ -501,34 +501,78 @@ fn obj_errors_name_file_and_line() {
     }
 }
 
+/// A zero-byte file is an error (a write that never happened); a well-formed file with no
+/// faces is the empty mesh, so an empty result written and read back is empty again.
 #[test]
-fn empty_files_are_errors() {
+fn empty_files_are_errors_and_files_of_no_faces_are_the_empty_mesh() {
     let dir = scratch("empty");
     for name in ["e.obj", "e.stl", "e.gltf", "e.glb"] {
         let p = dir.join(name);
         fs::write(&p, "").unwrap();
-        assert!(matches!(read_mesh(&p), Err(Error::Parse { .. })), "{name}");
+        let e = read_mesh(&p).unwrap_err();
+        assert!(matches!(e, Error::Parse { .. }), "{name}");
+        assert!(e.to_string().contains("the file is empty"), "{e}");
+        fs::write(&p, " \n\t\n").unwrap();
+        assert!(
+            read_mesh(&p)
+                .unwrap_err()
+                .to_string()
+                .contains("the file is empty")
+        );
     }
-    // Well-formed files with nothing in them.
-    let p = dir.join("verts.obj");
-    fs::write(&p, "v 0 0 0\nv 1 0 0\n").unwrap();
-    assert!(matches!(read_mesh(&p), Err(Error::Parse { .. })));
-    let p = dir.join("solid.stl");
-    fs::write(&p, "solid empty\nendsolid empty\n").unwrap();
-    assert!(matches!(read_mesh(&p), Err(Error::Parse { .. })));
-    let p = dir.join("none.gltf");
-    fs::write(&p, r#"{"asset": {"version": "2.0"}}"#).unwrap();
-    assert!(matches!(read_mesh(&p), Err(Error::Parse { .. })));
-    // An empty mesh can still be written, and the writers' output is valid but unreadable
-    // as a mesh (it holds no triangles).
+    // Well-formed files with no faces.
+    for (name, text) in [
+        ("comments.obj", "# nothing here\ng empty\nmtllib e.mtl\n"),
+        ("solid.stl", "solid empty\nendsolid empty\n"),
+        ("none.gltf", r#"{"asset": {"version": "2.0"}}"#),
+    ] {
+        let p = dir.join(name);
+        fs::write(&p, text).unwrap();
+        assert!(read_mesh(&p).unwrap().is_empty(), "{name}");
+    }
+    // Not empty but not a surface: vertices without faces, faces that all repeat a vertex,
+    // and text that is not OBJ at all.
+    for (name, text, message) in [
+        (
+            "verts.obj",
+            "v 0 0 0\nv 1 0 0\n",
+            "holds 2 vertices but no faces",
+        ),
+        (
+            "degenerate.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 1 2\nf 2 3 3\n",
+            "all 2 triangles repeat a vertex",
+        ),
+        (
+            "prose.obj",
+            "# a note\nhello world\n",
+            "prose.obj:2: the file holds no faces, and `hello`",
+        ),
+        (
+            "degenerate.stl",
+            "solid d\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid d\n",
+            "all 1 triangles repeat a vertex",
+        ),
+    ] {
+        let p = dir.join(name);
+        fs::write(&p, text).unwrap();
+        let e = read_mesh(&p).unwrap_err();
+        assert!(matches!(e, Error::Parse { .. }), "{name}: {e:?}");
+        assert!(e.to_string().contains(message), "{name}: {e}");
+    }
+    // The writers' output for an empty mesh reads back as the empty mesh, and as the empty
+    // solid: A ∪ ∅ = A, A − ∅ = A, A ∩ ∅ = ∅.
     let empty = Mesh::default();
+    let a = Solid::cube(1.0).unwrap();
     for format in Format::ALL {
         let p = dir.join(format!("out.{format}"));
         write_mesh(&p, &empty, &[]).unwrap();
-        assert!(
-            matches!(read_mesh(&p), Err(Error::Parse { .. })),
-            "{format}"
-        );
+        assert!(read_mesh(&p).unwrap().is_empty(), "{format}");
+        let nothing = read_solid(&p, &FromMeshOptions::default()).unwrap();
+        assert!(nothing.is_empty(), "{format}");
+        assert_eq!((&a | &nothing).volume(), 1.0, "{format}");
+        assert_eq!((&a - &nothing).volume(), 1.0, "{format}");
+        assert!((&a & &nothing).is_empty(), "{format}");
     }
 }
 
@@ -756,4 +800,41 @@ fn obj_concave_ngon_caps_keep_their_area() {
     assert!((cut.volume() - 2.0).abs() < 1e-12, "{}", cut.volume());
     assert!((cut.area() - 12.0).abs() < 1e-12, "{}", cut.area());
     fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn encode_mesh_gives_the_bytes_write_mesh_writes() {
+    let dir = scratch("encode");
+    let mesh = two_part();
+    let mats = materials();
+    for format in Format::ALL {
+        for materials in [&mats[..], &[]] {
+            let path = dir.join(format!("part.{format}"));
+            let encoded = bspcsg::encode_mesh(&path, &mesh, materials, format).unwrap();
+            assert_eq!(encoded[0].path, path, "{format}: the main file comes first");
+            let expected_files = match format {
+                Format::Gltf => 2,
+                Format::Obj if !materials.is_empty() => 2,
+                _ => 1,
+            };
+            assert_eq!(encoded.len(), expected_files, "{format}");
+            write_mesh_as(&path, &mesh, materials, format).unwrap();
+            for file in &encoded {
+                assert_eq!(file.path.parent(), Some(dir.as_path()));
+                let written = fs::read(&file.path).unwrap();
+                assert_eq!(written, file.bytes, "{}", file.path.display());
+            }
+            // What was encoded reads back as the mesh.
+            let back = read_mesh(&path).unwrap();
+            assert_eq!(back.triangle_count(), mesh.triangle_count(), "{format}");
+            assert!(rel(back.volume(), mesh.volume()) < 1e-5, "{format}");
+            for file in &encoded {
+                fs::remove_file(&file.path).unwrap();
+            }
+        }
+    }
+    // Nothing is written by encoding, and a companion that would be the file itself is refused.
+    let clash = bspcsg::encode_mesh(dir.join("part.bin"), &mesh, &[], Format::Gltf);
+    assert!(matches!(clash, Err(Error::Io { .. })), "{clash:?}");
+    assert!(files_in(&dir).is_empty(), "{:?}", files_in(&dir));
 }

@@ -2,6 +2,7 @@
 """bspcsg against manifold3d on the same OBJ files, interleaved in one session.
 
 usage: speed_table.py INPUT_DIR [--rounds R] [--only SUBSTRING] [--large] [--bench-obj PATH]
+                     [--boolmesh PATH]
        speed_table.py --manifold union|intersection|difference A.obj B.obj [--runs N]
 
 Run it through tools/speed_table.sh, which builds the tools and writes the inputs. For each case
@@ -12,6 +13,11 @@ loads its inputs outside the timed region, warms up once and times a few runs; t
 every timed run of every round. Peak memory is each process's maximum resident set (from
 wait4), input loading included; the manifold3d process also holds the Python interpreter and
 numpy (about 40 MB before any mesh is read).
+
+With `--boolmesh PATH` (tools/boolmesh_bench, which speed_table.sh builds when it can), a third
+process per round times boolmesh, the Rust port of manifold's boolean, on the same files (its
+result is a mesh too; taking out its flat position and index arrays is inside the timing), and
+the table gains its columns; the three take turns going first.
 
 Prints a markdown table: medians, the spread (min–max) and the ratio of our closed mesh to
 manifold3d, output triangle counts and volumes of both.
@@ -122,7 +128,7 @@ def main(argv):
         print(__doc__, file=sys.stderr)
         return 2
     dir_ = argv[0]
-    rounds, only, large = 3, None, False
+    rounds, only, large, boolmesh = 3, None, False, None
     bench_obj = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "target", "release",
                              "examples", "bench_obj")
     i = 1
@@ -133,6 +139,8 @@ def main(argv):
             only, i = argv[i + 1], i + 2
         elif argv[i] == "--bench-obj":
             bench_obj, i = argv[i + 1], i + 2
+        elif argv[i] == "--boolmesh":
+            boolmesh, i = argv[i + 1], i + 2
         elif argv[i] == "--large":
             large, i = True, i + 1
         else:
@@ -151,12 +159,15 @@ def main(argv):
             continue
         ours_cmd = [bench_obj, op, *files, "--runs", str(runs)]
         theirs_cmd = [sys.executable, os.path.abspath(__file__), "--manifold", op, *files, "--runs", str(runs)]
-        boolean, closed, m3 = [], [], []
-        ours_mem, m3_mem = 0.0, 0.0
-        ours_last = m3_last = None
+        boolean, closed, m3, bm = [], [], [], []
+        ours_mem, m3_mem, bm_mem = 0.0, 0.0, 0.0
+        ours_last = m3_last = bm_last = None
         for r in range(rounds):
             order = [("ours", ours_cmd), ("m3", theirs_cmd)]
-            if r % 2:
+            if boolmesh:
+                order.append(("bm", [boolmesh, op, *files, "--runs", str(runs)]))
+                order = order[r % 3:] + order[:r % 3]
+            elif r % 2:
                 order.reverse()
             for who, cmd in order:
                 out, mem = run_measured(cmd)
@@ -164,6 +175,9 @@ def main(argv):
                     boolean += out["boolean_ms"]
                     closed += out["with_mesh_ms"]
                     ours_mem, ours_last = max(ours_mem, mem), out
+                elif who == "bm":
+                    bm += out["ms"]
+                    bm_mem, bm_last = max(bm_mem, mem), out
                 else:
                     m3 += out["ms"]
                     m3_mem, m3_last = max(m3_mem, mem), out
@@ -174,20 +188,30 @@ def main(argv):
                    ours_volume=ours_last["volume"], m3_volume=m3_last["volume"],
                    closed_manifold=ours_last["closed_manifold"], ours_mb=ours_mem, m3_mb=m3_mem,
                    samples=len(closed))
+        if boolmesh:
+            row.update(bm=statistics.median(bm), bm_spread=spread(bm), bm_mb=bm_mem,
+                       bm_tris=bm_last["output_triangles"], bm_volume=bm_last["volume"],
+                       bm_closed=bm_last["closed_manifold"])
         rows.append(row)
         print(f"{label}: ours {fmt_ms(row['closed'])} ms, manifold3d {fmt_ms(row['m3'])} ms, "
-              f"{row['closed'] / row['m3']:.2f}×", file=sys.stderr, flush=True)
+              f"{row['closed'] / row['m3']:.2f}×"
+              + (f", boolmesh {fmt_ms(row['bm'])} ms" if boolmesh else ""), file=sys.stderr, flush=True)
     print("| case | triangles in | ours, boolean | ours, closed mesh (spread) | manifold3d (spread) "
-          "| ratio (closed) | triangles out, ours / manifold3d | volume, ours / manifold3d | peak MB, ours / manifold3d |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+          "| ratio (closed) | triangles out, ours / manifold3d | volume, ours / manifold3d | peak MB, ours / manifold3d |"
+          + (" boolmesh (spread) | ratio to boolmesh | boolmesh: triangles out, volume, peak MB |" if boolmesh else ""))
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|" + ("---:|---:|---:|" if boolmesh else ""))
     for r in rows:
         closed_note = "" if r["closed_manifold"] else " (not closed!)"
         print(f"| {r['label']} | {r['input_triangles']:,} | {fmt_ms(r['boolean'])} | "
               f"{fmt_ms(r['closed'])} ({r['closed_spread']}){closed_note} | {fmt_ms(r['m3'])} ({r['m3_spread']}) | "
               f"{r['closed'] / r['m3']:.2f}× | {r['ours_tris']:,} / {r['m3_tris']:,} | "
-              f"{r['ours_volume']:.6g} / {r['m3_volume']:.6g} | {r['ours_mb']:.0f} / {r['m3_mb']:.0f} |")
+              f"{r['ours_volume']:.6g} / {r['m3_volume']:.6g} | {r['ours_mb']:.0f} / {r['m3_mb']:.0f} |"
+              + (f" {fmt_ms(r['bm'])} ({r['bm_spread']}){'' if r['bm_closed'] else ' (not closed!)'} | "
+                 f"{r['closed'] / r['bm']:.2f}× | {r['bm_tris']:,}, {r['bm_volume']:.6g}, {r['bm_mb']:.0f} |"
+                 if boolmesh else ""))
     print(f"\nTimes in ms: medians over {rounds} interleaved rounds of each side's timed runs "
-          "(after one warm-up run per process); spread is min–max.")
+          "(after one warm-up run per process); spread is min–max."
+          + (" Ratio to boolmesh: our closed mesh over boolmesh's." if boolmesh else ""))
     return 0
 
 

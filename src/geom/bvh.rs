@@ -87,17 +87,12 @@ impl Bvh {
         Bvh { nodes, items }
     }
 
-    /// True when some item's box overlaps `query` grown by `margin`.
-    pub fn any_overlap(&self, boxes: &[Aabb], query: &Aabb, margin: f64) -> bool {
-        let mut found = false;
-        self.visit(
-            |b| b.overlaps(query, margin),
-            |i| {
-                found = boxes[i as usize].overlaps(query, margin);
-                found
-            },
-        );
-        found
+    /// The leaves: each one's box and its items.
+    pub fn leaves(&self) -> impl Iterator<Item = (&Aabb, &[u32])> + '_ {
+        self.nodes.iter().filter(|n| n.count > 0).map(|n| {
+            let s = n.start_or_right as usize;
+            (&n.bbox, &self.items[s..s + n.count as usize])
+        })
     }
 
     /// Calls `item` for each item in leaves whose boxes pass `enter`; stops when it returns true.
@@ -159,9 +154,36 @@ mod tests {
             .collect();
         let bvh = Bvh::build(&boxes);
         let q = Aabb::new(DVec3::new(10.2, 3.2, 0.1), DVec3::new(10.3, 3.3, 0.2));
-        assert!(bvh.any_overlap(&boxes, &q, 0.0));
+        let overlapping = |query: &Aabb| {
+            let mut found = Vec::new();
+            bvh.visit(
+                |b| b.overlaps(query, 0.0),
+                |i| {
+                    if boxes[i as usize].overlaps(query, 0.0) {
+                        found.push(i);
+                    }
+                    false
+                },
+            );
+            found
+        };
+        assert_eq!(overlapping(&q), vec![10]);
         let far = Aabb::new(DVec3::splat(-5.0), DVec3::splat(-4.0));
-        assert!(!bvh.any_overlap(&boxes, &far, 0.0));
+        assert!(overlapping(&far).is_empty());
+        // The leaves hold every item once, each inside its leaf's box.
+        let mut items: Vec<u32> = bvh
+            .leaves()
+            .flat_map(|(leaf, items)| {
+                assert!(
+                    items
+                        .iter()
+                        .all(|&i| leaf.union(&boxes[i as usize]) == *leaf)
+                );
+                items.iter().copied()
+            })
+            .collect();
+        items.sort();
+        assert_eq!(items, (0..100).collect::<Vec<_>>());
         let mut hit = Vec::new();
         bvh.ray(DVec3::new(-1.0, 0.25, 0.25), DVec3::X, |i| {
             if boxes[i as usize].min.y == 0.0 {

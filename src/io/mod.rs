@@ -18,6 +18,7 @@ mod atomic;
 mod gltf;
 mod obj;
 mod stl;
+mod triangles;
 
 pub use atomic::cleanup_interrupted_writes;
 use atomic::write_atomically;
@@ -137,12 +138,19 @@ impl FromStr for Format {
 /// The result is welded (bit-identical positions share one vertex), every triangle has
 /// source id 0, and triangles that repeat a vertex after welding are dropped.
 ///
+/// A well-formed file with no faces at all — what the writers produce for an empty result:
+/// an OBJ of comments and statements only, an STL of no facets, a glTF whose scenes draw no
+/// triangles — is the empty mesh, so that an empty result written and read back is the empty
+/// solid again (check [`Mesh::is_empty`] to warn about it).
+///
 /// # Errors
 ///
 /// [`Error::Unsupported`] for an unknown extension or an unsupported feature of the format,
 /// [`Error::Io`] when the file (or a glTF's external buffer) cannot be read, and
 /// [`Error::Parse`] naming the file (and, for OBJ and ASCII STL, the line) when the content is
-/// malformed, has non-finite coordinates, is empty or holds no triangles.
+/// malformed or has non-finite coordinates; when the file is empty (zero bytes or only
+/// whitespace: a write that never happened, not an empty mesh); when every triangle repeats a
+/// vertex; and for an OBJ with vertices but no faces (points, not a surface).
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<Mesh> {
     let path = path.as_ref();
     read_mesh_as(path, Format::from_path(path)?)
@@ -183,15 +191,11 @@ pub fn read_mesh_from_bytes(path: &Path, bytes: &[u8], format: Format) -> Result
     if bytes.iter().all(u8::is_ascii_whitespace) {
         return Err(parse_error(path, None, "the file is empty"));
     }
-    let mesh = match format {
-        Format::Obj => obj::read(path, bytes)?,
-        Format::Stl => stl::read(path, bytes)?,
-        Format::Gltf | Format::Glb => gltf::read(path, bytes)?,
-    };
-    if mesh.is_empty() {
-        return Err(parse_error(path, None, "the file holds no triangles"));
+    match format {
+        Format::Obj => obj::read(path, bytes),
+        Format::Stl => stl::read(path, bytes),
+        Format::Gltf | Format::Glb => gltf::read(path, bytes),
     }
-    Ok(mesh)
 }
 
 /// Reads a mesh file (format by extension, as [`read_mesh`]) and makes a [`Solid`] of it with
@@ -264,6 +268,44 @@ pub fn write_mesh_as(
     materials: &[Material],
     format: Format,
 ) -> Result<()> {
+    let mut files = encode_mesh(path, mesh, materials, format)?;
+    // The main file comes first in `files`; companions are renamed before it so that a reader
+    // never sees a main file that refers to a missing or stale companion.
+    files.rotate_left(1);
+    write_atomically(&files)
+}
+
+/// The files [`write_mesh_as`] would write, as bytes in memory: the main file first (its
+/// `path` is `path`), then any companion beside it (an OBJ's `.mtl` when materials are given,
+/// a `.gltf`'s `.bin`). Nothing is written. `path` only names the files: a `.gltf` and an OBJ
+/// refer to their companion by its file name, and the companions' paths are derived from it.
+///
+/// ```
+/// use bspcsg::{Format, Mesh, encode_mesh, read_mesh_from_bytes};
+/// use bspcsg::glam::DVec3;
+/// let tetra = Mesh::new(
+///     vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+///     vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+/// );
+/// let files = encode_mesh("tetra.stl", &tetra, &[], Format::Stl)?;
+/// assert_eq!(files.len(), 1);
+/// assert_eq!(files[0].bytes.len(), 84 + 4 * 50);
+/// let back = read_mesh_from_bytes(&files[0].path, &files[0].bytes, Format::Stl)?;
+/// assert_eq!(back.triangle_count(), 4);
+/// # Ok::<(), bspcsg::Error>(())
+/// ```
+///
+/// # Errors
+///
+/// As [`write_mesh`], except that nothing is written: [`Error::InvalidMesh`] and
+/// [`Error::InvalidParameter`] as there, and [`Error::Io`] only when a companion's path would
+/// be `path` itself (a `.gltf` named `x.bin`, an OBJ with materials named `x.mtl`).
+pub fn encode_mesh(
+    path: impl AsRef<Path>,
+    mesh: &Mesh,
+    materials: &[Material],
+    format: Format,
+) -> Result<Vec<OutFile>> {
     let path = path.as_ref();
     check_mesh(mesh, format != Format::Obj)?;
     for m in materials {
@@ -283,8 +325,6 @@ pub fn write_mesh_as(
         Format::Gltf => gltf::write(path, mesh, materials, false)?,
         Format::Glb => gltf::write(path, mesh, materials, true)?,
     };
-    // The main file comes first in `files`; companions are renamed before it so that a reader
-    // never sees a main file that refers to a missing or stale companion.
     if let Some(c) = files.companions.iter().find(|c| c.path == path) {
         return Err(Error::Io {
             path: path.to_path_buf(),
@@ -298,12 +338,12 @@ pub fn write_mesh_as(
             ),
         });
     }
-    let mut outputs = files.companions;
-    outputs.push(OutFile {
+    let mut out = vec![OutFile {
         path: path.to_path_buf(),
         bytes: files.main,
-    });
-    write_atomically(&outputs)
+    }];
+    out.extend(files.companions);
+    Ok(out)
 }
 
 /// The files beside a mesh file that it refers to: a glTF's buffer and image URIs (decoded as
@@ -342,9 +382,12 @@ pub(crate) struct Files {
     pub companions: Vec<OutFile>,
 }
 
-/// One file to write.
-pub(crate) struct OutFile {
+/// One file of a mesh encoded by [`encode_mesh`]: where it belongs and its content.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct OutFile {
+    /// The file's path: the one given for the main file, derived from it for a companion.
     pub path: PathBuf,
+    /// The file's content.
     pub bytes: Vec<u8>,
 }
 

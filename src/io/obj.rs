@@ -19,6 +19,7 @@ use std::path::Path;
 
 use glam::DVec3;
 
+use super::triangles::Triangles;
 use super::{Files, OutFile, generator, parse_error};
 use crate::error::{Error, Result};
 use crate::geom::Plane;
@@ -32,7 +33,7 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh> {
     // Weld in the order faces first use positions; unused positions are dropped.
     let mut welder = Welder::with_capacity(parsed.positions.len());
     let mut id = vec![u32::MAX; parsed.positions.len()];
-    let mut triangles = Vec::with_capacity(parsed.indices.len());
+    let mut triangles = Triangles::with_capacity(parsed.indices.len());
     let mut face: Vec<u32> = Vec::new();
     for range in &parsed.faces {
         face.clear();
@@ -45,17 +46,13 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh> {
         }
         triangulate_face(&welder.positions, &face, &mut triangles);
     }
-    Ok(Mesh::new(welder.positions, triangles))
+    triangles.into_mesh(path, welder.positions)
 }
 
-/// Appends the triangles of one face (welded vertex ids), dropping those that repeat a vertex:
-/// they have no area and no edges of their own.
-fn triangulate_face(positions: &[DVec3], face: &[u32], out: &mut Vec<[u32; 3]>) {
-    let mut push = |t: [u32; 3]| {
-        if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
-            out.push(t);
-        }
-    };
+/// Appends the triangles of one face (welded vertex ids); `out` drops those that repeat a
+/// vertex.
+fn triangulate_face(positions: &[DVec3], face: &[u32], out: &mut Triangles) {
+    let mut push = |t: [u32; 3]| out.push(t);
     let fan = |push: &mut dyn FnMut([u32; 3])| {
         for k in 1..face.len() - 1 {
             push([face[0], face[k], face[k + 1]]);
@@ -95,6 +92,47 @@ fn strictly_convex(points: &[DVec3], normal: DVec3) -> bool {
     })
 }
 
+/// The statements of OBJ and its free-form geometry: any other first word on a line (outside a
+/// comment) says the file is something else.
+const STATEMENTS: [&str; 36] = [
+    "v",
+    "vt",
+    "vn",
+    "vp",
+    "f",
+    "fo",
+    "l",
+    "p",
+    "g",
+    "o",
+    "s",
+    "mg",
+    "mtllib",
+    "usemtl",
+    "maplib",
+    "usemap",
+    "cstype",
+    "deg",
+    "bmat",
+    "step",
+    "curv",
+    "curv2",
+    "surf",
+    "parm",
+    "trim",
+    "hole",
+    "scrv",
+    "sp",
+    "end",
+    "con",
+    "bevel",
+    "c_interp",
+    "d_interp",
+    "lod",
+    "shadow_obj",
+    "trace_obj",
+];
+
 /// The positions and faces of an OBJ file, indices absolute and 0-based.
 struct Parsed {
     positions: Vec<DVec3>,
@@ -114,6 +152,8 @@ impl Parsed {
         };
         // Positive indices past the vertices read so far: allowed if the file defines them later.
         let mut forward: Vec<(usize, i64)> = Vec::new();
+        // The first line that is not OBJ, which tells a file of no faces from another file.
+        let mut stranger: Option<(usize, String)> = None;
         // A UTF-8 byte-order mark (some Windows editors write one) is no part of the first
         // line: left in, it hid the first `v` and shifted every index after it.
         let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
@@ -146,6 +186,9 @@ impl Parsed {
                     parsed.faces.push(start..parsed.indices.len());
                 }
                 // Texture coordinates, normals, groups, materials, lines, points, comments …
+                Some(word) if stranger.is_none() && !STATEMENTS.contains(&word) => {
+                    stranger = Some((line_no, word.chars().take(16).collect::<String>()));
+                }
                 _ => {}
             }
         }
@@ -157,8 +200,26 @@ impl Parsed {
                 format!("vertex index {i} is out of range: the file has {vertices} vertices"),
             ));
         }
+        // No faces: the empty mesh (as written for an empty result) when the file is OBJ and
+        // nothing else; vertices alone are points or lines, and stray words are another file.
         if parsed.faces.is_empty() {
-            return Err(parse_error(path, None, "the file holds no faces"));
+            if vertices > 0 {
+                return Err(parse_error(
+                    path,
+                    None,
+                    format!(
+                        "the file holds {vertices} vert{} but no faces: points, not a surface",
+                        if vertices == 1 { "ex" } else { "ices" }
+                    ),
+                ));
+            }
+            if let Some((line, word)) = stranger {
+                return Err(parse_error(
+                    path,
+                    Some(line),
+                    format!("the file holds no faces, and `{word}` is not an OBJ statement"),
+                ));
+            }
         }
         Ok(parsed)
     }
@@ -400,7 +461,9 @@ mod tests {
         assert_eq!(line_of(parse("v 0 0 0\nf 1 1\n").unwrap_err()), Some(2));
         assert_eq!(line_of(parse("v 0 0 0\nf 1 a 1\n").unwrap_err()), Some(2));
         assert_eq!(line_of(parse("v 0 0 0 0\n").unwrap_err()), Some(1));
-        assert_eq!(line_of(parse("# nothing\n").unwrap_err()), None);
+        // Comments alone are the empty mesh; a line that is not OBJ is named.
+        assert!(parse("# nothing\n").unwrap().is_empty());
+        assert_eq!(line_of(parse("# a\nnothing\n").unwrap_err()), Some(2));
     }
 
     #[test]

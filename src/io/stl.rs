@@ -8,6 +8,7 @@ use std::path::Path;
 
 use glam::{DVec3, Vec3};
 
+use super::triangles::Triangles;
 use super::{Files, parse_error};
 use crate::error::{Error, MeshDefect, Result};
 use crate::mesh::Mesh;
@@ -89,7 +90,7 @@ fn binary_size(n: u32) -> Option<u64> {
 
 fn read_binary(path: &Path, bytes: &[u8], n: usize) -> Result<Mesh> {
     let mut welder = Welder::with_capacity(n / 2 + 3);
-    let mut triangles = Vec::with_capacity(n);
+    let mut triangles = Triangles::with_capacity(n);
     let records = bytes.get(HEADER + 4..).unwrap_or_default();
     for (t, rec) in records.chunks_exact(RECORD).enumerate() {
         let f = |k: usize| {
@@ -108,17 +109,9 @@ fn read_binary(path: &Path, bytes: &[u8], n: usize) -> Result<Mesh> {
             }
             *slot = welder.index(p);
         }
-        push_triangle(&mut triangles, tri);
+        triangles.push(tri);
     }
-    Ok(Mesh::new(welder.positions, triangles))
-}
-
-/// Keeps triangles with three distinct vertices: one that repeats a vertex has no area and
-/// would only add a dangling edge.
-fn push_triangle(triangles: &mut Vec<[u32; 3]>, t: [u32; 3]) {
-    if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
-        triangles.push(t);
-    }
+    triangles.into_mesh(path, welder.positions)
 }
 
 /// Where the ASCII parser is in the grammar.
@@ -138,7 +131,7 @@ enum State {
 
 fn read_ascii(path: &Path, bytes: &[u8]) -> Result<Mesh> {
     let mut welder = Welder::default();
-    let mut triangles = Vec::new();
+    let mut triangles = Triangles::default();
     let mut state = State::Outside;
     let mut corners: Vec<u32> = Vec::with_capacity(3);
     let mut line_no = 0;
@@ -188,7 +181,7 @@ fn read_ascii(path: &Path, bytes: &[u8]) -> Result<Mesh> {
                 }
                 // Three corners is the rule; a few writers emit polygons, taken as fans.
                 for k in 1..corners.len() - 1 {
-                    push_triangle(&mut triangles, [corners[0], corners[k], corners[k + 1]]);
+                    triangles.push([corners[0], corners[k], corners[k + 1]]);
                 }
                 state = State::EndLoop;
             }
@@ -208,7 +201,7 @@ fn read_ascii(path: &Path, bytes: &[u8]) -> Result<Mesh> {
             "the file ends inside a facet",
         ));
     }
-    Ok(Mesh::new(welder.positions, triangles))
+    triangles.into_mesh(path, welder.positions)
 }
 
 /// Parses exactly three numbers from the rest of a line.

@@ -149,6 +149,20 @@ impl Tile {
     pub fn pixels(&self) -> usize {
         ((self.x1 - self.x0) * (self.y1 - self.y0)) as usize
     }
+
+    /// The tiles covering a `w` × `h` image, row by row (the last row and column cut short).
+    pub fn grid(w: u32, h: u32) -> Vec<Tile> {
+        (0..h.div_ceil(TILE))
+            .flat_map(|ty| {
+                (0..w.div_ceil(TILE)).map(move |tx| Tile {
+                    x0: tx * TILE,
+                    y0: ty * TILE,
+                    x1: ((tx + 1) * TILE).min(w),
+                    y1: ((ty + 1) * TILE).min(h),
+                })
+            })
+            .collect()
+    }
 }
 
 /// Renders every tile in parallel (`shade` fills a tile's pixels row by row) and reports
@@ -159,16 +173,7 @@ pub(crate) fn render_tiles(
     shade: impl Fn(&Tile, &mut Vec<DVec3>) + Sync,
 ) -> Image {
     let (w, h) = (frame.width, frame.height);
-    let tiles: Vec<Tile> = (0..h.div_ceil(TILE))
-        .flat_map(|ty| {
-            (0..w.div_ceil(TILE)).map(move |tx| Tile {
-                x0: tx * TILE,
-                y0: ty * TILE,
-                x1: ((tx + 1) * TILE).min(w),
-                y1: ((ty + 1) * TILE).min(h),
-            })
-        })
-        .collect();
+    let tiles = Tile::grid(w, h);
     let done = AtomicUsize::new(0);
     let total = tiles.len();
     let every = (total / 100).max(1);

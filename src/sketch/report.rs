@@ -111,3 +111,40 @@ fn segments_conflict(p: [DVec2; 2], q: [DVec2; 2], eps: f64) -> bool {
     let apart = |a: f64, b: f64| (a > 0.0 && b < 0.0) || (a < 0.0 && b > 0.0);
     apart(side(q, p[0]), side(q, p[1])) && apart(side(p, q[0]), side(p, q[1]))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sketch::Region;
+
+    /// A ring vertex written `-0.0` and one written `0.0` are one point: the notch vertex
+    /// (0, 0) lies on the straight left side of the square, which counts as collinear only
+    /// if no other ring uses it, and the triangle touching it from the left writes it `-0.0`.
+    #[test]
+    fn negative_zero_vertex_is_shared() {
+        let d = DVec2::new;
+        let square = Region {
+            outer: vec![
+                d(0.0, -1.0),
+                d(1.0, -1.0),
+                d(1.0, 1.0),
+                d(0.0, 1.0),
+                d(0.0, 0.0),
+            ],
+            holes: Vec::new(),
+        };
+        let mut triangle = Region {
+            outer: vec![d(-1.0, -0.5), d(-0.0, 0.0), d(-1.0, 0.5)],
+            holes: Vec::new(),
+        };
+        let sketch = |regions: Vec<Region>| Sketch { regions, eps: 0.0 };
+        assert_eq!(
+            report(&sketch(vec![square.clone(), triangle.clone()])),
+            SketchReport::default()
+        );
+        // The check itself: with the triangle moved off the vertex, it is collinear.
+        triangle.outer[1] = d(-0.5, 0.0);
+        let alone = report(&sketch(vec![square, triangle]));
+        assert_eq!(alone.collinear_vertices, 1, "{alone:?}");
+    }
+}

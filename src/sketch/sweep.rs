@@ -325,3 +325,41 @@ fn face(vertices: &[DVec3]) -> Result<Polygon> {
         "gives a face with no computable plane (a feature below the tolerance)",
     ))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A hole touching the outer ring at a vertex the outer ring writes `0.0` and the hole
+    /// `-0.0`: one CDT vertex, so the cap is the ring's seven points and covers the region.
+    #[test]
+    fn negative_zero_vertex_is_one_cap_vertex() {
+        let d = DVec2::new;
+        let region = Region {
+            outer: vec![
+                d(-2.0, -2.0),
+                d(0.0, -2.0),
+                d(2.0, -2.0),
+                d(2.0, 2.0),
+                d(-2.0, 2.0),
+            ],
+            holes: vec![vec![d(-0.0, -2.0), d(-1.0, 0.0), d(1.0, 0.0)]],
+        };
+        assert_eq!(region.area(), 14.0);
+        let tris = cap(&region, |p| p.extend(0.0)).unwrap();
+        let corners: std::collections::BTreeSet<[u64; 2]> = tris
+            .iter()
+            .flatten()
+            .map(|p| [p.x.to_bits(), p.y.to_bits()])
+            .collect();
+        assert_eq!(corners.len(), 7, "{corners:?}");
+        assert!(!corners.contains(&[(-0.0f64).to_bits(), (-2.0f64).to_bits()]));
+        let area: f64 = tris
+            .iter()
+            .map(|[a, b, c]| 0.5 * (*b - *a).perp_dot(*c - *a))
+            .sum();
+        assert!((area - 14.0).abs() < 1e-12, "{area}");
+        // The boundary walked once is a simple polygon of eight corners (the pinch twice).
+        assert_eq!(tris.len(), 6, "{tris:?}");
+    }
+}

@@ -2,7 +2,6 @@
 //! reductions on top of it are in `ops.rs`.
 
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::{PrecisionLoss, Solid};
 use crate::bsp::{Coplanar, FOCUS_MARGIN, Label, Surface, Tree};
@@ -150,10 +149,7 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
     };
     let (surface_a, surface_b) = rayon::join(|| Surface::new(&a, eps), || Surface::new(&b, eps));
     let margin = FOCUS_MARGIN * eps;
-    let (near_a, near_b) = rayon::join(
-        || near_flags(&a, &surface_b, margin),
-        || near_flags(&b, &surface_a, margin),
-    );
+    let (near_a, near_b) = surface_a.near_each_other(&surface_b, margin);
     let (a_kept, b_kept) = rayon::join(
         || {
             let tree_b = Tree::build_focused(&b, eps, Some(&boxes(&a, &near_a)));
@@ -230,15 +226,6 @@ fn cut_down(polys: Vec<Polygon>, other: &Aabb, eps: f64) -> Vec<Polygon> {
         out.extend(inside);
     }
     out
-}
-
-/// For each polygon, whether its box comes within `margin` of the other operand's surface.
-fn near_flags(polys: &[Polygon], other: &Surface, margin: f64) -> Vec<bool> {
-    polys
-        .par_iter()
-        .with_min_len(256)
-        .map(|p| other.near(&p.bbox(), margin))
-        .collect()
 }
 
 /// The polygons near the other surface, the ones clipped, each edge knowing its neighbour's

@@ -41,7 +41,17 @@ pub(crate) fn check(args: &CheckArgs, progress: &Progress) -> Result<(), Failure
     let (mesh, what, tolerance) = match &args.mesh {
         Some(path) => {
             progress.step(format!("reading {}", path.display()));
-            (read_mesh(path)?, path.display().to_string(), None)
+            let mesh = read_mesh(path)?;
+            if mesh.is_empty() {
+                return Err(Failure {
+                    message: format!(
+                        "{}: holds no triangles: nothing to compare with the scene",
+                        path.display()
+                    ),
+                    code: 2,
+                });
+            }
+            (mesh, path.display().to_string(), None)
         }
         None => {
             let mesh = scene_mesh(&scene, args.via, None, None, progress).map_err(in_scene)?;

@@ -2,11 +2,13 @@
 
 use std::path::{Path, PathBuf};
 
-use bspcsg::{BoolOp, FromMeshOptions, Material, MeshDefect, boolean_all, read_solid};
+use bspcsg::{BoolOp, Error, FromMeshOptions, Material, MeshDefect, boolean_all, read_solid};
 
 use crate::cli::BooleanArgs;
 use crate::failure::Failure;
-use crate::output::{Expect, finish, output_target, protect_inputs};
+use crate::output::{
+    Expect, finish, not_written, output_target, protect_inputs, warn_if_empty_input,
+};
 use crate::progress::Progress;
 
 /// `union`, `intersection`, `difference`.
@@ -39,6 +41,7 @@ pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Re
             f.message.push_str(hint.unwrap_or_default());
             f
         })?;
+        warn_if_empty_input(path, solid.is_empty(), progress);
         // Source ids record which input each output triangle came from.
         let id = u32::try_from(i).map_err(|_| Failure::usage_or_io("too many inputs"))?;
         solids.push(solid.with_source(id));
@@ -46,15 +49,24 @@ pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Re
     }
     progress.step(format!("combining {} solids", solids.len()));
     let solid = boolean_all(solids, op);
-    solid.check_precision()?;
     progress.step("repairing (welding, closing T-junctions)");
-    let mesh = solid.to_mesh();
-    let expect = if args.allow_open {
-        Expect::Any
-    } else {
-        Expect::Closed
-    };
-    finish(out, format, &mesh, &materials, expect, progress)
+    // Inputs let in open may give an open result; solids must give a solid.
+    if args.allow_open {
+        solid.check_precision()?;
+        return finish(
+            out,
+            format,
+            &solid.to_mesh(),
+            &materials,
+            Expect::Any,
+            progress,
+        );
+    }
+    let mesh = solid.to_checked_mesh().map_err(|e| match e {
+        Error::BrokenResult { report, .. } => not_written(out, &report),
+        e => e.into(),
+    })?;
+    finish(out, format, &mesh, &materials, Expect::Closed, progress)
 }
 
 /// The material that marks input `i`'s triangles: named after its file, coloured from a small

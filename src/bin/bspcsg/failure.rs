@@ -25,6 +25,7 @@ impl From<Error> for Failure {
     fn from(e: Error) -> Self {
         let code = match e {
             Error::InvalidMesh { .. }
+            | Error::BrokenResult { .. }
             | Error::OverBudget { .. }
             | Error::BeyondPrecision { .. } => 2,
             _ => 1,

@@ -6,13 +6,14 @@ use bspcsg::{MeshReport, read_mesh};
 
 use crate::cli::InfoArgs;
 use crate::failure::Failure;
-use crate::output::print_stdout;
+use crate::output::{print_stdout, warn_if_empty_input};
 use crate::progress::Progress;
 
 /// `info`.
 pub(crate) fn info(args: &InfoArgs, progress: &Progress) -> Result<(), Failure> {
     progress.step(format!("reading {}", args.mesh.display()));
     let mesh = read_mesh(&args.mesh)?;
+    warn_if_empty_input(&args.mesh, mesh.is_empty(), progress);
     progress.step("checking");
     let report = mesh.report();
     let area = mesh.area();

@@ -6,7 +6,7 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
-use bspcsg::{Format, Material, Mesh, write_mesh_as};
+use bspcsg::{Format, Material, Mesh, MeshReport, write_mesh_as};
 
 use crate::cli::OutputArgs;
 use crate::failure::Failure;
@@ -99,6 +99,17 @@ pub(crate) enum Expect {
     Any,
 }
 
+/// The refusal of a result that should be a closed 2-manifold and is not: a fault, exit 2.
+pub(crate) fn not_written(out: &Path, report: &MeshReport) -> Failure {
+    Failure {
+        message: format!(
+            "the result is not a closed 2-manifold, so {} is not written: {report}",
+            out.display()
+        ),
+        code: 2,
+    }
+}
+
 /// Writes the result and prints a summary, with a warning when the result is empty or (where
 /// that is allowed) not a closed 2-manifold.
 pub(crate) fn finish(
@@ -112,13 +123,7 @@ pub(crate) fn finish(
     progress.step("checking the result");
     let report = mesh.report();
     if expect == Expect::Closed && !mesh.is_empty() && !report.is_closed_manifold() {
-        return Err(Failure {
-            message: format!(
-                "the result is not a closed 2-manifold, so {} is not written: {report}",
-                out.display()
-            ),
-            code: 2,
-        });
+        return Err(not_written(out, &report));
     }
     progress.step(format!("writing {}", out.display()));
     // Directories too appear only once the work has succeeded, and go again if the write fails.
@@ -147,10 +152,22 @@ pub(crate) fn finish(
             out.display(),
             report.triangles,
             report.vertices,
-            report.volume
+            // An empty mesh's volume sums no terms: -0.0 only by the sign of nothing.
+            report.volume + 0.0
         ));
     }
     Ok(())
+}
+
+/// Warns that an input holds no triangles: it is read as the empty mesh (a well-formed file
+/// with no faces, as written for an empty result), which is allowed but rarely meant.
+pub(crate) fn warn_if_empty_input(path: &Path, empty: bool, progress: &Progress) {
+    if empty {
+        progress.println(&format!(
+            "bspcsg: warning: {} holds no triangles: read as the empty mesh",
+            path.display()
+        ));
+    }
 }
 
 /// Prints to stdout. A closed pipe (`bspcsg info x | head -1`) is not an error.

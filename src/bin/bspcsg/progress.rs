@@ -32,6 +32,14 @@ impl Progress {
         }
     }
 
+    /// Prints a line on stderr with the spinner out of the way (it carries on afterwards).
+    pub(crate) fn println(&self, line: &str) {
+        match &self.bar {
+            Some(bar) => bar.suspend(|| crate::output::print_stderr(line)),
+            None => crate::output::print_stderr(line),
+        }
+    }
+
     /// Clears the spinner before the summary, warnings or errors print.
     pub(crate) fn finish(&self) {
         if let Some(bar) = &self.bar {

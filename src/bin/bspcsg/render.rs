@@ -72,6 +72,12 @@ pub(crate) fn render(args: &RenderArgs, progress: &Progress) -> Result<(), Failu
             )));
         }
         let mesh = read_mesh(input)?;
+        if mesh.is_empty() {
+            return Err(Failure::usage_or_io(format!(
+                "{}: holds no triangles: nothing to draw",
+                input.display()
+            )));
+        }
         progress.step("building the BVH");
         let bvh = Box::new(MeshBvh::build(&mesh));
         Subject::Mesh {

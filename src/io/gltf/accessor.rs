@@ -9,6 +9,7 @@ use gltf::mesh::Mode;
 
 use crate::error::{Error, Result};
 use crate::io::parse_error;
+use crate::io::triangles::Triangles;
 use crate::mesh::weld::Welder;
 
 /// Accessors without a buffer view read as zeros; a count above this for one of them is
@@ -32,7 +33,7 @@ impl Reader<'_> {
         prim: &gltf::Primitive,
         world: &DMat4,
         welder: &mut Welder,
-        triangles: &mut Vec<[u32; 3]>,
+        triangles: &mut Triangles,
     ) -> Result<()> {
         let mode = prim.mode();
         if !matches!(
@@ -63,9 +64,7 @@ impl Reader<'_> {
             if flip {
                 tri.swap(1, 2);
             }
-            if tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2] {
-                triangles.push(tri);
-            }
+            triangles.push(tri);
         };
         match mode {
             Mode::Triangles => {

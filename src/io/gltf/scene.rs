@@ -11,6 +11,7 @@ use super::accessor::Reader;
 use super::container::{GLB_MAGIC, split_glb};
 use super::uri::load_buffers;
 use crate::error::{Error, Result};
+use crate::io::triangles::Triangles;
 use crate::io::{MAX_READ_TRIANGLES, parse_error};
 use crate::mesh::Mesh;
 use crate::mesh::weld::Welder;
@@ -31,7 +32,7 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh> {
     let reader = Reader { path, buffers };
 
     let mut welder = Welder::default();
-    let mut triangles = Vec::new();
+    let mut triangles = Triangles::default();
     for roots in scenes {
         // Valid glTF node hierarchies are disjoint trees; a node met twice in one scene means
         // a cycle or a shared child, which would loop forever or duplicate geometry.
@@ -60,7 +61,7 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh> {
             }
         }
     }
-    Ok(Mesh::new(welder.positions, triangles))
+    triangles.into_mesh(path, welder.positions)
 }
 
 /// Refuses a document whose scenes would place more than [`MAX_READ_TRIANGLES`] triangles:

@@ -6,7 +6,6 @@ use smallvec::SmallVec;
 
 use super::Ring;
 use crate::geom::triangulate::{ear_clip_boundary, triangulate_boundary};
-use crate::hash::FxHashMap;
 use crate::polygon::Polygon;
 
 /// Rings of one source in one plane, connected through shared edges.
@@ -74,27 +73,22 @@ pub(super) fn triangulate_regions(
 /// carry it across a gentle fold. Smaller groups join larger ones, each of their vertices
 /// checked once per join, so `O(n log n)` vertex checks in all.
 fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) -> Vec<Region> {
-    let mut uses: FxHashMap<(u32, u32), SmallVec<[u32; 2]>> =
-        FxHashMap::with_capacity_and_hasher(rings.len() * 4, Default::default());
-    for (r, ring) in rings.iter().enumerate() {
-        for (a, b) in ring_edges(&ring.verts) {
-            uses.entry((a, b)).or_default().push(r as u32);
-        }
-    }
+    let partner = edge_partners(rings);
     let plane_of = |r: u32| polygons[rings[r as usize].polygon as usize].plane();
     let source_of = |r: u32| polygons[rings[r as usize].polygon as usize].source();
     // group[r]: the group ring r belongs to; members[g]: its rings, the first giving the plane.
     let mut group: Vec<u32> = (0..rings.len() as u32).collect();
-    let mut members: Vec<Vec<u32>> = (0..rings.len() as u32).map(|r| vec![r]).collect();
+    let mut members: Vec<SmallVec<[u32; 2]>> = (0..rings.len() as u32)
+        .map(|r| smallvec::smallvec![r])
+        .collect();
+    let mut half = 0usize;
     for (r, ring) in rings.iter().enumerate() {
-        for (a, b) in ring_edges(&ring.verts) {
-            let (Some(fwd), Some(back)) = (uses.get(&(a, b)), uses.get(&(b, a))) else {
-                continue;
-            };
-            if fwd.len() != 1 || back.len() != 1 {
+        let edges = ring.verts.len();
+        for &other in &partner[half..half + edges] {
+            if other == u32::MAX {
                 continue;
             }
-            let (gx, gy) = (group[r], group[back[0] as usize]);
+            let (gx, gy) = (group[r], group[other as usize]);
             if gx == gy {
                 continue;
             }
@@ -120,6 +114,7 @@ fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) 
                 members[big as usize].extend(moved);
             }
         }
+        half += edges;
     }
     members
         .into_iter()
@@ -129,10 +124,44 @@ fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) 
             Region {
                 source: polygons[rings[rings_of[0] as usize].polygon as usize].source(),
                 normal: first.normal,
-                rings: rings_of,
+                rings: rings_of.into_vec(),
             }
         })
         .collect()
+}
+
+/// For each ring edge, in ring order and edge order, the ring across it when exactly one ring
+/// uses the edge each way (`u32::MAX` otherwise). One sort of the half-edges by undirected
+/// edge, not a hash map of edge uses: a boolean's soup has 10⁵ of them.
+fn edge_partners(rings: &[Ring]) -> Vec<u32> {
+    // (undirected edge, half-edge index << 1 | reversed): sorting puts each edge's uses together.
+    let mut keyed: Vec<(u64, u32)> = Vec::with_capacity(rings.len() * 4);
+    let mut owner: Vec<u32> = Vec::with_capacity(rings.len() * 4);
+    for (r, ring) in rings.iter().enumerate() {
+        for (a, b) in ring_edges(&ring.verts) {
+            let undirected = ((a.min(b) as u64) << 32) | a.max(b) as u64;
+            keyed.push((undirected, (owner.len() as u32) << 1 | u32::from(a > b)));
+            owner.push(r as u32);
+        }
+    }
+    keyed.sort_unstable();
+    let mut partner = vec![u32::MAX; owner.len()];
+    let mut i = 0;
+    while i < keyed.len() {
+        let mut j = i + 1;
+        while j < keyed.len() && keyed[j].0 == keyed[i].0 {
+            j += 1;
+        }
+        if let [(_, x), (_, y)] = keyed[i..j]
+            && (x ^ y) & 1 == 1
+        {
+            let (hx, hy) = ((x >> 1) as usize, (y >> 1) as usize);
+            partner[hx] = owner[hy];
+            partner[hy] = owner[hx];
+        }
+        i = j;
+    }
+    partner
 }
 
 fn ring_edges(v: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {

@@ -7,7 +7,6 @@ use smallvec::SmallVec;
 use super::Ring;
 use crate::geom::Aabb;
 use crate::geom::bvh::Bvh;
-use crate::hash::FxHashSet;
 use crate::mesh::weld::Wide;
 
 /// Inserts into every ring edge, in order along it, each vertex within its reach (`delta`, or
@@ -25,17 +24,52 @@ pub(super) fn insert_on_edges(
     wide: &Wide,
     skip_matched: bool,
 ) {
-    let mut directed: FxHashSet<(u32, u32)> =
-        FxHashSet::with_capacity_and_hasher(rings.len() * 4, Default::default());
+    let mut first_edge: Vec<usize> = Vec::with_capacity(rings.len() + 1);
+    let mut total = 0usize;
     for ring in rings.iter() {
-        let n = ring.verts.len();
-        directed.extend((0..n).map(|k| (ring.verts[k], ring.verts[(k + 1) % n])));
+        first_edge.push(total);
+        total += ring.verts.len();
     }
-    let reach: Vec<f64> = positions.iter().map(|&p| wide.reach(p, delta)).collect();
+    let matched = if skip_matched {
+        reversed_edges(rings, total)
+    } else {
+        vec![false; total]
+    };
     let search = wide.widest(delta);
-    let boxes: Vec<Aabb> = positions.iter().map(|&p| Aabb::new(p, p)).collect();
+    // The candidates: every vertex, or, where matched edges are skipped, the ends of unmatched
+    // edges. A vertex in the middle of a neighbour's edge splits the edge on its own side, so
+    // those pieces have no reverse either: the ends of unmatched edges are the vertices that can
+    // lie on one. Most of a boolean's result is matched, so the search tree is small.
+    let mut candidate = vec![!skip_matched; positions.len()];
+    if skip_matched {
+        for (ring, &first) in rings.iter().zip(&first_edge) {
+            let n = ring.verts.len();
+            for k in 0..n {
+                if !matched[first + k] {
+                    candidate[ring.verts[k] as usize] = true;
+                    candidate[ring.verts[(k + 1) % n] as usize] = true;
+                }
+            }
+        }
+    }
+    let points: Vec<u32> = (0..positions.len() as u32)
+        .filter(|&v| candidate[v as usize])
+        .collect();
+    let reach: Vec<f64> = points
+        .iter()
+        .map(|&v| wide.reach(positions[v as usize], delta))
+        .collect();
+    let boxes: Vec<Aabb> = points
+        .iter()
+        .map(|&v| {
+            let p = positions[v as usize];
+            Aabb::new(p, p)
+        })
+        .collect();
     let bvh = Bvh::build(&boxes);
-    rings.par_iter_mut().with_min_len(64).for_each(|ring| {
+    let each = rings.par_iter_mut().enumerate().with_min_len(64);
+    each.for_each(|(r, ring)| {
+        let first = first_edge[r];
         let n = ring.verts.len();
         let mut out: SmallVec<[u32; 8]> = SmallVec::with_capacity(n);
         let mut on_edge: Vec<(f64, u32)> = Vec::new();
@@ -43,7 +77,7 @@ pub(super) fn insert_on_edges(
             let (ia, ib) = (ring.verts[k], ring.verts[(k + 1) % n]);
             let (a, b) = (positions[ia as usize], positions[ib as usize]);
             out.push(ia);
-            if skip_matched && directed.contains(&(ib, ia)) {
+            if matched[first + k] {
                 continue;
             }
             let d = b - a;
@@ -55,10 +89,11 @@ pub(super) fn insert_on_edges(
             on_edge.clear();
             bvh.visit(
                 |bx| bx.overlaps(&query, search),
-                |w| {
+                |item| {
+                    let w = points[item as usize];
                     if w != ia && w != ib {
                         let p = positions[w as usize];
-                        let r = reach[w as usize];
+                        let r = reach[item as usize];
                         // Distance to the line by the cross product: `a + d·t` would carry
                         // the rounding of the edge's length (10²² on a 10³⁸-long edge).
                         let len = len2.sqrt();
@@ -83,4 +118,36 @@ pub(super) fn insert_on_edges(
         }
         ring.verts = out;
     });
+}
+
+/// For each ring edge (rings in order, edges in ring order), whether some ring uses it the
+/// other way: one sort of the half-edges by undirected edge rather than a hash set of them.
+fn reversed_edges(rings: &[Ring], total: usize) -> Vec<bool> {
+    // (undirected edge, half-edge index << 1 | runs from the larger index to the smaller).
+    let mut keyed: Vec<(u64, u32)> = Vec::with_capacity(total);
+    for ring in rings {
+        let n = ring.verts.len();
+        for k in 0..n {
+            let (a, b) = (ring.verts[k], ring.verts[(k + 1) % n]);
+            let undirected = ((a.min(b) as u64) << 32) | a.max(b) as u64;
+            keyed.push((undirected, (keyed.len() as u32) << 1 | u32::from(a > b)));
+        }
+    }
+    keyed.sort_unstable();
+    let mut matched = vec![false; total];
+    let mut i = 0;
+    while i < keyed.len() {
+        let mut j = i + 1;
+        while j < keyed.len() && keyed[j].0 == keyed[i].0 {
+            j += 1;
+        }
+        let run = &keyed[i..j];
+        if run.iter().any(|&(_, h)| (h ^ run[0].1) & 1 == 1) {
+            for &(_, h) in run {
+                matched[(h >> 1) as usize] = true;
+            }
+        }
+        i = j;
+    }
+    matched
 }

@@ -4,6 +4,7 @@
 //! Everything rests on the edge table of [`crate::topology`]; components and vertex fans then
 //! come from union-find over triangles and triangle corners.
 
+mod checked;
 mod display;
 mod shells;
 
@@ -11,7 +12,7 @@ use glam::DVec3;
 
 use super::Mesh;
 use crate::disjoint_sets::DisjointSets;
-use crate::geom::{Aabb, is_zero_area};
+use crate::geom::{Aabb, unit_scale};
 use crate::topology::EdgeTable;
 
 /// What [`Mesh::report`] finds in an indexed triangle mesh: counts, defects, shells, genus and
@@ -33,12 +34,15 @@ use crate::topology::EdgeTable;
 ///   shells, not one.
 /// - A vertex is **non-manifold** when the usable triangles around it form more than one fan,
 ///   fans being joined across edges used by exactly two triangles. Touching solids show up here.
-/// - **Zero area**: the triangle's area cannot be told from zero at the precision of its
-///   coordinates: twice the area is at most [`ZERO_AREA_ULPS`](Self::ZERO_AREA_ULPS) units in
-///   the last place of what moving each corner by its own rounding (ε·|v|) could change it,
-///   `ε · Σ |v| · |opposite edge|`. Scale-free, so tiny and huge meshes are judged alike, exact
-///   zeros always count, and a needle that is merely thin (a 1-wide hole joined to corners
-///   10³⁸ away) does not.
+/// - **Zero area**: the triangle's area cannot be told from zero by computing it from the
+///   coordinates as given: twice the area is at most [`ZERO_AREA_ULPS`](Self::ZERO_AREA_ULPS)
+///   units of the rounding of that computation, `ε · |e₁| · |e₂|` for the two shorter edges
+///   (their differences are exact or nearly so, and so is their cross product to that bound).
+///   Scale-free and translation-free, so tiny, huge and far meshes are judged alike (a fine
+///   watertight sphere 10¹² from the origin has no zero-area triangles, though booleans there
+///   are beyond precision), exact zeros always count, and a needle that is merely thin (a
+///   1-wide hole joined to corners 10³⁸ away) does not. (Booleans judge their own output more
+///   strictly, by the rounding its computed corners carry where they sit, `ε · |corner|`.)
 ///
 /// - A **needle** is a usable triangle whose area is below
 ///   [`NEEDLE_AREA`](Self::NEEDLE_AREA) × d², `d` the diagonal of its shell's bounding box:
@@ -130,7 +134,7 @@ pub struct ShellReport {
 
 impl MeshReport {
     /// A triangle is degenerate when twice its area is at most this many units of rounding:
-    /// `ε · Σ |corner| · |opposite edge|`.
+    /// `ε · |e₁| · |e₂|`, its two shorter edges.
     pub const ZERO_AREA_ULPS: f64 = crate::geom::ZERO_AREA_ULPS;
 
     /// A triangle is a needle when its area is below this fraction of the square of its
@@ -255,12 +259,39 @@ impl TriangleCensus {
                 continue;
             }
             c.usable[t] = true;
-            if is_zero_area(tri.map(|i| mesh.positions[i as usize])) {
+            if is_zero_area_as_given(tri.map(|i| mesh.positions[i as usize])) {
                 c.degenerate += 1;
             }
         }
         c
     }
+}
+
+/// True when twice the triangle's area is at most [`MeshReport::ZERO_AREA_ULPS`] units of the
+/// rounding of computing it from its corners as given: `ε · |e₁| · |e₂|`, the two shorter edges
+/// crossed at their common corner. Edges are scaled by a power of two (exact) so that nothing
+/// overflows or underflows.
+fn is_zero_area_as_given([a, b, c]: [DVec3; 3]) -> bool {
+    let (ab, bc, ca) = (b - a, c - b, a - c);
+    // The corner opposite the longest edge, and its two edges (pointing away from it).
+    let (l_ab, l_bc, l_ca) = (ab.length(), bc.length(), ca.length());
+    let (e1, e2) = if l_ab >= l_bc && l_ab >= l_ca {
+        (-bc, ca)
+    } else if l_bc >= l_ca {
+        (ab, -ca)
+    } else {
+        (bc, -ab)
+    };
+    let reach = e1.abs().max(e2.abs()).max_element();
+    if !reach.is_finite() {
+        return false;
+    }
+    if reach == 0.0 {
+        return true;
+    }
+    let s = unit_scale(reach);
+    let (e1, e2) = (e1 * s, e2 * s);
+    e1.cross(e2).length() <= MeshReport::ZERO_AREA_ULPS * f64::EPSILON * e1.length() * e2.length()
 }
 
 /// The box of the referenced finite vertices, how many vertices are referenced, and how many of
@@ -327,6 +358,7 @@ fn has_repeat(tri: &[u32; 3]) -> bool {
 mod tests {
     use glam::DVec3;
 
+    use super::is_zero_area_as_given;
     use crate::mesh::Mesh;
 
     fn tetra() -> Mesh {
@@ -366,5 +398,33 @@ mod tests {
         assert_eq!((r.degenerate_triangles, r.repeated_index_triangles), (1, 1));
         assert!(r.closed && r.oriented);
         assert_eq!(r.genus, Some(0));
+    }
+
+    #[test]
+    fn zero_area_as_given_is_free_of_scale_and_place() {
+        let line = [DVec3::ZERO, DVec3::X, DVec3::X * 2.0];
+        // A small triangle: 0.05 across, its apex 0.04 off the base.
+        let small = [DVec3::ZERO, DVec3::X * 0.05, DVec3::new(0.02, 0.04, 0.0)];
+        let place = |t: [DVec3; 3], at: f64| t.map(|p| p + DVec3::splat(at));
+        for at in [0.0, 1e6, 1e12] {
+            assert!(is_zero_area_as_given(place(line, at)), "{at}");
+            // 10¹² from the origin coordinates round to 1.2·10⁻⁴: the corners move a little,
+            // the triangle keeps its area.
+            assert!(!is_zero_area_as_given(place(small, at)), "{at}");
+        }
+        // At 10¹⁶ they round to 2: the small triangle collapses.
+        assert!(is_zero_area_as_given(place(small, 1e16)));
+        for scale in [1e-200, 1e-6, 1e6, 1e200] {
+            assert!(is_zero_area_as_given(line.map(|p| p * scale)));
+            assert!(!is_zero_area_as_given(small.map(|p| p * scale)), "{scale}");
+        }
+        let cap = |h: f64| [DVec3::ZERO, DVec3::X, DVec3::new(0.5, h, 0.0)];
+        assert!(is_zero_area_as_given(cap(1e-15)));
+        assert!(!is_zero_area_as_given(cap(1e-13)));
+        // Thin is not flat: a 1-wide base joined to a corner 10³⁸ away.
+        let far = [DVec3::ZERO, DVec3::X, DVec3::new(3e38, 3e38, 0.0)];
+        assert!(!is_zero_area_as_given(far));
+        assert!(is_zero_area_as_given([DVec3::ONE; 3]));
+        assert!(!is_zero_area_as_given([DVec3::ZERO, DVec3::X, DVec3::NAN]));
     }
 }
