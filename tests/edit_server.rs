@@ -218,7 +218,7 @@ fn bad_requests_get_clear_errors_and_change_nothing() {
         assert_eq!(status, 400, "{path}: {body}");
     }
     // A cross-site post (a form's content type) and a foreign Host are refused.
-    let (status, _) = request(
+    let (status, body) = request(
         port,
         "POST",
         "/api/save",
@@ -227,6 +227,10 @@ fn bad_requests_get_clear_errors_and_change_nothing() {
         None,
     );
     assert_eq!(status, 415);
+    // The transport's refusals have the body of every other refusal.
+    let body: serde_json::Value = serde_json::from_slice(&body).unwrap();
+    assert!(body["error"].as_str().unwrap().contains("application/json"));
+    assert!(body["json_path"].is_null() && body.as_object().unwrap().len() == 2);
     let mut s = TcpStream::connect(("127.0.0.1", port)).unwrap();
     s.write_all(b"GET /api/scene HTTP/1.1\r\nHost: evil.example:80\r\nConnection: close\r\n\r\n")
         .unwrap();

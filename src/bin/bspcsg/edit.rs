@@ -55,17 +55,6 @@ fn header<'a>(request: &'a Request, name: &str) -> Option<&'a str> {
         .map(|h| h.value.as_str())
 }
 
-fn refuse(status: u16, message: &str) -> Response {
-    Response {
-        status,
-        content_type: "application/json",
-        headers: Vec::new(),
-        body: serde_json::json!({ "error": message })
-            .to_string()
-            .into_bytes(),
-    }
-}
-
 /// The checks that belong to the transport, then the library's answer.
 fn answer(editor: &Editor, port: u16, request: &mut Request) -> Response {
     // Only this server's own names: a page elsewhere that rebinds a DNS name to 127.0.0.1
@@ -73,7 +62,7 @@ fn answer(editor: &Editor, port: u16, request: &mut Request) -> Response {
     let host_ok = header(request, "host")
         .is_some_and(|h| h == format!("127.0.0.1:{port}") || h == format!("localhost:{port}"));
     if !host_ok {
-        return refuse(403, "requests must be addressed to 127.0.0.1 or localhost");
+        return Response::refusal(403, "requests must be addressed to 127.0.0.1 or localhost");
     }
     let post = *request.method() == tiny_http::Method::Post;
     // A cross-site form or `fetch` cannot send application/json without a CORS preflight,
@@ -82,7 +71,7 @@ fn answer(editor: &Editor, port: u16, request: &mut Request) -> Response {
         && !header(request, "content-type")
             .is_some_and(|c| c.to_ascii_lowercase().starts_with("application/json"))
     {
-        return refuse(415, "POST bodies must be sent as application/json");
+        return Response::refusal(415, "POST bodies must be sent as application/json");
     }
     if let Some(n) = request.body_length()
         && n > MAX_BODY_BYTES
@@ -96,7 +85,7 @@ fn answer(editor: &Editor, port: u16, request: &mut Request) -> Response {
         .take(MAX_BODY_BYTES as u64 + 1)
         .read_to_end(&mut body)
     {
-        return refuse(400, &format!("the request body could not be read: {e}"));
+        return Response::refusal(400, format!("the request body could not be read: {e}"));
     }
     if body.len() > MAX_BODY_BYTES {
         return Response::too_large(body.len());

@@ -50,13 +50,20 @@ impl Response {
         )
     }
 
+    /// A refusal with no JSON path, `{"error": message, "json_path": null}`: the body of every
+    /// refusal, for a server in front of [`Editor::handle`](super::Editor::handle) that refuses
+    /// what never reaches it (a foreign host, a cross-site post).
+    #[must_use]
+    pub fn refusal(status: u16, message: impl Into<String>) -> Response {
+        Response::error(status, None, message)
+    }
+
     /// The answer to a body over [`MAX_BODY_BYTES`] (the server sends it without reading the
     /// body).
     #[must_use]
     pub fn too_large(length: usize) -> Response {
-        Response::error(
+        Response::refusal(
             413,
-            None,
             format!(
                 "the request body of {length} bytes is over the limit of {MAX_BODY_BYTES} bytes"
             ),
