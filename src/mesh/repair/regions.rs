@@ -5,6 +5,7 @@ use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::Ring;
+use crate::geom::is_zero_area;
 use crate::geom::triangulate::{ear_clip_boundary, triangulate_boundary};
 use crate::polygon::Polygon;
 
@@ -24,15 +25,36 @@ pub(super) fn triangulate_regions(
 ) -> (Vec<[u32; 3]>, Vec<u32>) {
     let mut regions = group(positions, rings, polygons, delta);
     loop {
+        // A region that is one triangle passes through as it is: nothing to merge and nothing
+        // to retriangulate (most of a real model, far from the cut). Its corners are pinned, so
+        // no neighbour drops them.
+        let lone: Vec<Option<[u32; 3]>> = regions
+            .iter()
+            .map(|r| lone_triangle(positions, rings, r))
+            .collect();
+        let mut pinned = vec![false; positions.len()];
+        for t in lone.iter().flatten() {
+            for &v in t {
+                pinned[v as usize] = true;
+            }
+        }
         let mut boundaries: Vec<Vec<(u32, u32)>> = regions
             .par_iter()
-            .map(|r| boundary(rings, &r.rings))
+            .zip(&lone)
+            .map(|(r, l)| match l {
+                Some(_) => Vec::new(),
+                None => boundary(rings, &r.rings),
+            })
             .collect();
-        simplify(positions, &mut boundaries, delta);
+        simplify(positions, &mut boundaries, &pinned, delta);
         let results: Vec<Option<Vec<[u32; 3]>>> = regions
             .par_iter()
             .zip(&boundaries)
-            .map(|(r, b)| triangulate_boundary(positions, r.normal, b))
+            .zip(&lone)
+            .map(|((r, b), l)| match l {
+                Some(_) => Some(Vec::new()),
+                None => triangulate_boundary(positions, r.normal, b),
+            })
             .collect();
         let failed: Vec<usize> = (0..regions.len())
             .filter(|&i| results[i].is_none() && regions[i].rings.len() > 1)
@@ -41,6 +63,11 @@ pub(super) fn triangulate_regions(
             let mut tris = Vec::new();
             let mut sources = Vec::new();
             for (i, result) in results.into_iter().enumerate() {
+                if let Some(t) = lone[i] {
+                    sources.push(regions[i].source);
+                    tris.push(t);
+                    continue;
+                }
                 let t = result.unwrap_or_else(|| {
                     ear_clip_boundary(positions, regions[i].normal, &boundaries[i])
                 });
@@ -164,6 +191,19 @@ fn edge_partners(rings: &[Ring]) -> Vec<u32> {
     partner
 }
 
+/// The region's triangle when it is one ring of three corners spanning area (a flat one takes
+/// the general path, which drops it).
+fn lone_triangle(positions: &[DVec3], rings: &[Ring], region: &Region) -> Option<[u32; 3]> {
+    let [ring] = region.rings[..] else {
+        return None;
+    };
+    let &[a, b, c] = &rings[ring as usize].verts[..] else {
+        return None;
+    };
+    let t = [a, b, c];
+    (!is_zero_area(t.map(|v| positions[v as usize]))).then_some(t)
+}
+
 fn ring_edges(v: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {
     (0..v.len()).map(move |k| (v[k], v[(k + 1) % v.len()]))
 }
@@ -216,8 +256,8 @@ fn boundary(rings: &[Ring], members: &[u32]) -> Vec<(u32, u32)> {
 
 /// Removes every vertex that lies within `delta` of the segment between its only two
 /// neighbours and passes straight through on every boundary that uses it, from all of those
-/// boundaries at once, so that adjacent regions keep matching edges.
-fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], delta: f64) {
+/// boundaries at once, so that adjacent regions keep matching edges. `pinned` vertices stay.
+fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], pinned: &[bool], delta: f64) {
     struct Edge {
         a: u32,
         b: u32,
@@ -242,7 +282,7 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], delta: f64)
         incoming[e.b as usize].push(i as u32);
     }
     let mut work: Vec<u32> = (0..positions.len() as u32)
-        .filter(|&v| !outgoing[v as usize].is_empty())
+        .filter(|&v| !outgoing[v as usize].is_empty() && !pinned[v as usize])
         .collect();
     while let Some(v) = work.pop() {
         let (outs, ins) = (&outgoing[v as usize], &incoming[v as usize]);
@@ -291,7 +331,7 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], delta: f64)
         }
         outgoing[v as usize].clear();
         incoming[v as usize].clear();
-        work.extend(nbrs);
+        work.extend(nbrs.into_iter().filter(|&n| !pinned[n as usize]));
     }
     for b in boundaries.iter_mut() {
         b.clear();
