@@ -20,7 +20,7 @@ mod tree;
 
 use rayon::prelude::*;
 
-pub use bsp_route::{DEFAULT_MAX_ANGLE, MAX_SCENE_POLYGONS, TessellationOptions};
+pub use bsp_route::{DEFAULT_MAX_ANGLE, MAX_SCENE_POLYGONS, MAX_SCENE_WORK, TessellationOptions};
 pub(crate) use cull::{Culler, Pruned};
 pub use marching_cubes::{
     BakeOptions, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL, MAX_REFINE_STEPS,
