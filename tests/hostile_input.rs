@@ -835,6 +835,82 @@ fn scene_exports_over_the_polygon_budget_are_refused_with_a_tolerance_that_fits(
     assert!(!out.exists());
 }
 
+/// The points of a wavy ring, `[x,y]` each, for scene documents.
+fn wavy_polygon(n: u32) -> Vec<String> {
+    (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+            let r = 1.0 + 0.05 * (37.0 * a).sin();
+            format!("[{:.6},{:.6}]", r * a.cos(), r * a.sin())
+        })
+        .collect()
+}
+
+/// The marching-cubes route's outline work (grid points × polygon points evaluated at each)
+/// is estimated before sampling: one 10,000-point polygon extruded at the default 128 cells
+/// across (10⁶ grid points, 10¹⁰ edge visits) is refused at once with a cell that fits.
+#[test]
+fn a_bake_over_the_outline_budget_is_refused_with_a_cell_that_fits() {
+    let dir = Scratch::new("bake-budget");
+    let scene = dir.path("outline.json");
+    fs::write(
+        &scene,
+        format!(
+            r#"{{"kind":"sdf_scene","version":1,"tree":{{"op":"extrude","extrude_depth":1,"source_2d_sdf":{{"type":"polygon","points":[{}]}}}}}}"#,
+            wavy_polygon(10_000).join(",")
+        ),
+    )
+    .unwrap();
+    let out = dir.path("outline.obj");
+    let t = Instant::now();
+    let run = bspcsg([
+        "export".as_ref(),
+        scene.as_os_str(),
+        "--via".as_ref(),
+        "sdf".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(1);
+    assert!(
+        t.elapsed() < Duration::from_secs(5),
+        "refused before sampling"
+    );
+    for needle in [
+        "outline.json",
+        "outlines of 10000 points",
+        "budget of 4294967296",
+    ] {
+        assert!(run.stderr.contains(needle), "{needle}: {}", run.stderr);
+    }
+    assert!(!out.exists());
+    let s = bspcsg::Scene::from_path(&scene).unwrap();
+    let err = s.bake(&bspcsg::BakeOptions::default()).unwrap_err();
+    let (cell, enough) = match &err {
+        Error::InvalidParameter {
+            name,
+            value,
+            reason,
+        } => {
+            assert_eq!(*name, "cell");
+            let enough: f64 = reason
+                .split("a cell of at least ")
+                .nth(1)
+                .and_then(|r| r.split(',').next())
+                .unwrap()
+                .parse()
+                .unwrap();
+            (*value, enough)
+        }
+        other => panic!("{other:?}"),
+    };
+    // (10⁶ · 10⁴ / 2³²)^⅓ ≈ 1.33 times the default cell.
+    assert!(
+        enough > 1.3 * cell && enough < 1.4 * cell,
+        "{cell} {enough}"
+    );
+}
+
 /// The BSP route's boolean work (polygon corners × levels of the balanced union) is
 /// estimated before anything is tessellated: 300 references to one 10,000-point polygon and
 /// 50,000 overlapping boxes are refused at once, saying what to change; so are four unit
@@ -842,13 +918,7 @@ fn scene_exports_over_the_polygon_budget_are_refused_with_a_tolerance_that_fits(
 #[test]
 fn scene_exports_over_the_work_budget_are_refused_before_any_work() {
     let dir = Scratch::new("work-budget");
-    let points: Vec<String> = (0..10_000)
-        .map(|i| {
-            let a = std::f64::consts::TAU * f64::from(i) / 10_000.0;
-            let r = 1.0 + 0.05 * (37.0 * a).sin();
-            format!("[{:.6},{:.6}]", r * a.cos(), r * a.sin())
-        })
-        .collect();
+    let points = wavy_polygon(10_000);
     let refs: Vec<String> = (0..300)
         .map(|i| {
             format!(

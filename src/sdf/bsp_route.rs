@@ -358,6 +358,7 @@ impl Ctx<'_> {
         else {
             return Ok(Solid::empty());
         };
+        super::bake_budget::check_bake_work(&program, &grid)?;
         let mut mesh = march(&program, grid, opts.refine_steps)?;
         super::assign_sources(&program, &mut mesh);
         let polygons = (0..mesh.triangle_count())
