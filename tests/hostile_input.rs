@@ -419,6 +419,7 @@ fn welder_hash_flooding_costs_no_more_than_random_positions() {
         tc = tc.min(time(&c));
         tr = tr.min(time(&r));
     }
+    eprintln!("{N} positions: crafted {tc:?}, random {tr:?}");
     assert!(tc <= 3 * tr, "crafted {tc:?} vs random {tr:?}");
 }
 
@@ -1197,4 +1198,45 @@ fn a_watertight_mesh_far_from_the_origin_has_no_degenerate_triangles() {
     assert_eq!(json["genus"], 0, "{json}");
     let report = read_mesh(&path).unwrap().report();
     assert!(report.is_closed_manifold(), "{report}");
+}
+
+/// A scene whose only part is thinner than a marching-cubes cell: the export says the part
+/// was lost between the grid's points and names a cell that keeps it; that cell, and the BSP
+/// route, do.
+#[test]
+fn a_part_thinner_than_a_cell_is_reported_lost_with_a_cell_that_keeps_it() {
+    let dir = Scratch::new("thin-part");
+    let scene = dir.path("sheet.json");
+    fs::write(
+        &scene,
+        r#"{"kind":"sdf_primitive","data":{"primitive_type":"box","size":[1,1,0.004]}}"#,
+    )
+    .unwrap();
+    let out = dir.path("sheet.obj");
+    let export = |extra: &[&str]| {
+        let mut args: Vec<&OsStr> = vec!["export".as_ref(), scene.as_os_str()];
+        args.extend(extra.iter().map(OsStr::new));
+        args.extend(["-o".as_ref(), out.as_os_str()]);
+        bspcsg(&args).ok()
+    };
+    let run = export(&["--via", "sdf"]);
+    assert!(run.stderr.contains("found no surface"), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("thinnest extent is 4.000e-3"),
+        "{}",
+        run.stderr
+    );
+    let cell = run
+        .stderr
+        .split("--cell ")
+        .nth(1)
+        .and_then(|r| r.split_whitespace().next())
+        .unwrap()
+        .to_owned();
+    let run = export(&["--via", "sdf", "--cell", &cell]);
+    assert!(!run.stderr.contains("found no surface"), "{}", run.stderr);
+    let volume = read_mesh(&out).unwrap().volume();
+    assert!((volume - 4e-3).abs() < 2e-3, "{volume}");
+    export(&["--via", "bsp"]);
+    assert!((read_mesh(&out).unwrap().volume() - 4e-3).abs() < 1e-12);
 }
