@@ -244,6 +244,15 @@ pub enum MeshDefect {
         /// The first pair.
         first: [usize; 2],
     },
+    /// Closed, and a shell crosses itself (not only another shell): it has no inside, so
+    /// [`FromMeshOptions::union_shells`](crate::FromMeshOptions::union_shells) cannot unite
+    /// the shells. Remedy: repair the shell in the program that made it.
+    ShellCrossesItself {
+        /// Pairs of triangles of one shell that cross.
+        pairs: usize,
+        /// The first pair.
+        first: [usize; 2],
+    },
     /// A face whose boundary crosses itself, so it cannot be triangulated.
     SelfIntersectingFace {
         /// The face.
@@ -343,6 +352,13 @@ impl fmt::Display for MeshDefect {
                 "self-intersecting: {pairs} pairs of triangles cross (first: triangles {} and \
                  {}); overlapping shells bound no solid: unite them first, or give them as \
                  separate inputs",
+                first[0], first[1]
+            ),
+            MeshDefect::ShellCrossesItself { pairs, first } => write!(
+                f,
+                "self-intersecting within a shell: {pairs} pairs of triangles of one shell cross \
+                 (first: triangles {} and {}); a shell through itself has no inside, so the \
+                 shells cannot be united",
                 first[0], first[1]
             ),
             MeshDefect::AllZeroArea { triangles, reach } => write!(

@@ -124,9 +124,9 @@ pub use mesh::{FromMeshOptions, Material, Mesh, MeshReport, ShellReport};
 pub use polygon::{Polygon, Split};
 pub use primitives::{MAX_POLYGONS, MAX_SEGMENTS, MIN_SEGMENTS, segments_for_tolerance};
 pub use sdf::{
-    BakeOptions, DEFAULT_MAX_ANGLE, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL,
-    MAX_POLYGON_POINTS, MAX_REFINE_STEPS, MAX_SCENE_MAGNITUDE, MAX_SCENE_POLYGONS, RenderProfile,
-    Scene, SceneCamera, TessellationOptions,
+    BakeOptions, DEFAULT_MAX_ANGLE, MAX_BAKE_TRIANGLES, MAX_BAKE_WORK, MAX_GRID_CELLS,
+    MAX_GRID_TOTAL, MAX_POLYGON_POINTS, MAX_REFINE_STEPS, MAX_SCENE_MAGNITUDE, MAX_SCENE_POLYGONS,
+    MAX_SCENE_WORK, RenderProfile, Scene, SceneCamera, TessellationOptions,
 };
 pub use sketch::{ExtrudeOptions, FillRule, Region, Sketch, SketchReport, TWIST_DEGREES_PER_SLICE};
 pub use solid::{

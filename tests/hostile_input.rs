@@ -419,6 +419,7 @@ fn welder_hash_flooding_costs_no_more_than_random_positions() {
         tc = tc.min(time(&c));
         tr = tr.min(time(&r));
     }
+    eprintln!("{N} positions: crafted {tc:?}, random {tr:?}");
     assert!(tc <= 3 * tr, "crafted {tc:?} vs random {tr:?}");
 }
 
@@ -605,7 +606,7 @@ fn a_signal_during_export_leaves_no_temporary_file_or_directory() {
 fn overlapping_shells_are_refused_as_an_operand_and_reported_by_info() {
     let dir = Scratch::new("overlapping-shells");
     // Two unit cubes in one file, the second moved by (0.5, 0.25, 0.25): closed and manifold,
-    // volume 2, but the solid they bound is 1.5.
+    // volume 2, but the solid they bound is 1.71875.
     let two = format!(
         "{}{}",
         box_obj_text([0.0; 3], [1.0; 3]),
@@ -659,6 +660,121 @@ fn overlapping_shells_are_refused_as_an_operand_and_reported_by_info() {
         err.to_string().contains(&format!("{} pairs", pairs.len())),
         "{err}"
     );
+}
+
+/// One OBJ of several boxes, `(min, max, cavity)`: a cavity's faces wind inward.
+fn boxes_obj(boxes: &[([f64; 3], [f64; 3], bool)]) -> String {
+    let mut text = String::new();
+    for (k, &(min, max, cavity)) in boxes.iter().enumerate() {
+        for line in box_obj_text(min, max).lines() {
+            match line.strip_prefix("f ") {
+                Some(f) => {
+                    let mut idx: Vec<String> = f
+                        .split_whitespace()
+                        .map(|i| (i.parse::<usize>().unwrap() + 8 * k).to_string())
+                        .collect();
+                    if cavity {
+                        idx.reverse();
+                    }
+                    text += &format!("f {}\n", idx.join(" "));
+                }
+                None => text += &format!("{line}\n"),
+            }
+        }
+    }
+    text
+}
+
+/// Run a boolean with `--union-shells`: the volume written, or the failed run.
+fn union_shells_volume(dir: &Scratch, inputs: &[&Path]) -> f64 {
+    let out = dir.path("united.obj");
+    let mut args: Vec<&OsStr> = vec!["union".as_ref(), "--union-shells".as_ref()];
+    args.extend(inputs.iter().map(|p| p.as_os_str()));
+    args.extend(["-o".as_ref(), out.as_os_str()]);
+    bspcsg(&args).ok();
+    let mesh = read_mesh(&out).unwrap();
+    assert!(mesh.report().is_closed_manifold(), "{}", mesh.report());
+    mesh.volume()
+}
+
+/// Overlapping shells are resolved as their union when asked (`--union-shells`,
+/// `FromMeshOptions::union_shells`), a cavity staying with the shell around it; a shell that
+/// crosses itself is refused either way, naming the crossing.
+#[test]
+fn overlapping_shells_are_united_when_asked_and_a_shell_through_itself_is_refused() {
+    let dir = Scratch::new("union-shells");
+    let a = ([0.0; 3], [1.0; 3], false);
+    let b = ([0.5, 0.25, 0.25], [1.5, 1.25, 1.25], false);
+    let shells = dir.path("shells.obj");
+    fs::write(&shells, boxes_obj(&[a, b])).unwrap();
+    let other = dir.path("other.obj");
+    fs::write(&other, box_obj_text([0.25, 0.25, -0.5], [1.25, 1.25, 0.5])).unwrap();
+    // A ∪ B = 2 − 0.5 · 0.75 · 0.75 = 1.71875; with the third box, by inclusion–exclusion
+    // 1.71875 + 1 − (0.28125 + 0.1875 − 0.09375) = 2.34375.
+    let alone = dir.path("alone.obj");
+    fs::write(&alone, box_obj_text([5.0; 3], [6.0; 3])).unwrap();
+    assert!((union_shells_volume(&dir, &[&shells, &alone]) - 2.71875).abs() < 1e-12);
+    assert!((union_shells_volume(&dir, &[&shells, &other]) - 2.34375).abs() < 1e-12);
+    let options = bspcsg::FromMeshOptions::default().with_union_shells(true);
+    let solid = bspcsg::read_solid(&shells, &options).unwrap();
+    assert!((solid.volume() - 1.71875).abs() < 1e-12);
+    // A box with a cavity [0.1, 0.9]³ (0.488 of solid), crossed by B: (A − C) ∪ B =
+    // 0.488 + 1 − (0.28125 − 0.4 · 0.65 · 0.65) = 1.37575.
+    let hollow = dir.path("hollow.obj");
+    let cavity = ([0.1; 3], [0.9; 3], true);
+    fs::write(&hollow, boxes_obj(&[a, cavity, b])).unwrap();
+    let solid = bspcsg::read_solid(&hollow, &options).unwrap();
+    assert!(
+        (solid.volume() - 1.37575).abs() < 1e-12,
+        "{}",
+        solid.volume()
+    );
+    assert!((union_shells_volume(&dir, &[&hollow, &alone]) - 2.37575).abs() < 1e-12);
+    // One shell through itself: a cube whose corner (1, 1, 1) is pulled down to
+    // (0.8, 0.8, −0.5), through its own bottom face. Closed and manifold, not a solid.
+    let folded = dir.path("folded.obj");
+    let text = box_obj_text([0.0; 3], [1.0; 3]).replacen("v 1.0 1.0 1.0", "v 0.8 0.8 -0.5", 1);
+    assert!(text.contains("v 0.8 0.8 -0.5"));
+    fs::write(&folded, &text).unwrap();
+    let mesh = read_mesh(&folded).unwrap();
+    assert!(mesh.report().closed, "{}", mesh.report());
+    let pairs = mesh.crossing_triangle_pairs();
+    assert!(!pairs.is_empty());
+    let err = bspcsg::read_solid(&folded, &options).unwrap_err();
+    assert!(
+        matches!(
+            err.mesh_defect(),
+            Some(bspcsg::MeshDefect::ShellCrossesItself { .. })
+        ),
+        "{err}"
+    );
+    let first = format!("first: triangles {} and {}", pairs[0][0], pairs[0][1]);
+    for flags in [&["--union-shells"][..], &[]] {
+        let out = dir.path("out.obj");
+        let mut args: Vec<&OsStr> = vec!["union".as_ref()];
+        args.extend(flags.iter().map(OsStr::new));
+        args.extend([
+            folded.as_os_str(),
+            alone.as_os_str(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ]);
+        let run = bspcsg(&args).code(2);
+        assert!(run.stderr.contains("folded.obj"), "{}", run.stderr);
+        assert!(run.stderr.contains(&first), "{}", run.stderr);
+        assert!(!out.exists());
+    }
+    // Without the flag, overlapping shells are refused with a hint at it.
+    let out = dir.path("out.obj");
+    let run = bspcsg([
+        "union".as_ref(),
+        shells.as_os_str(),
+        alone.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(2);
+    assert!(run.stderr.contains("--union-shells"), "{}", run.stderr);
 }
 
 #[test]
@@ -718,6 +834,187 @@ fn scene_exports_over_the_polygon_budget_are_refused_with_a_tolerance_that_fits(
         .unwrap();
     assert!(enough > 1e-6 && enough < 1e-5, "{enough}");
     assert!(!out.exists());
+}
+
+/// The points of a wavy ring, `[x,y]` each, for scene documents.
+fn wavy_polygon(n: u32) -> Vec<String> {
+    (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+            let r = 1.0 + 0.05 * (37.0 * a).sin();
+            format!("[{:.6},{:.6}]", r * a.cos(), r * a.sin())
+        })
+        .collect()
+}
+
+/// The marching-cubes route's outline work (grid points × polygon points evaluated at each)
+/// is estimated before sampling: one 10,000-point polygon extruded at the default 128 cells
+/// across (10⁶ grid points, 10¹⁰ edge visits) is refused at once with a cell that fits.
+#[test]
+fn a_bake_over_the_outline_budget_is_refused_with_a_cell_that_fits() {
+    let dir = Scratch::new("bake-budget");
+    let scene = dir.path("outline.json");
+    fs::write(
+        &scene,
+        format!(
+            r#"{{"kind":"sdf_scene","version":1,"tree":{{"op":"extrude","extrude_depth":1,"source_2d_sdf":{{"type":"polygon","points":[{}]}}}}}}"#,
+            wavy_polygon(10_000).join(",")
+        ),
+    )
+    .unwrap();
+    let out = dir.path("outline.obj");
+    let t = Instant::now();
+    let run = bspcsg([
+        "export".as_ref(),
+        scene.as_os_str(),
+        "--via".as_ref(),
+        "sdf".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(1);
+    assert!(
+        t.elapsed() < Duration::from_secs(5),
+        "refused before sampling"
+    );
+    for needle in [
+        "outline.json",
+        "outlines of 10000 points",
+        "budget of 4294967296",
+    ] {
+        assert!(run.stderr.contains(needle), "{needle}: {}", run.stderr);
+    }
+    assert!(!out.exists());
+    let s = bspcsg::Scene::from_path(&scene).unwrap();
+    let err = s.bake(&bspcsg::BakeOptions::default()).unwrap_err();
+    let (cell, enough) = match &err {
+        Error::InvalidParameter {
+            name,
+            value,
+            reason,
+        } => {
+            assert_eq!(*name, "cell");
+            let enough: f64 = reason
+                .split("a cell of at least ")
+                .nth(1)
+                .and_then(|r| r.split(',').next())
+                .unwrap()
+                .parse()
+                .unwrap();
+            (*value, enough)
+        }
+        other => panic!("{other:?}"),
+    };
+    // (10⁶ · 10⁴ / 2³²)^⅓ ≈ 1.33 times the default cell.
+    assert!(
+        enough > 1.3 * cell && enough < 1.4 * cell,
+        "{cell} {enough}"
+    );
+}
+
+/// The BSP route's boolean work (polygon corners × levels of the balanced union) is
+/// estimated before anything is tessellated: 300 references to one 10,000-point polygon and
+/// 50,000 overlapping boxes are refused at once, saying what to change; so are four unit
+/// spheres at a tolerance the polygon budget lets through, with a tolerance that fits.
+#[test]
+fn scene_exports_over_the_work_budget_are_refused_before_any_work() {
+    let dir = Scratch::new("work-budget");
+    let points = wavy_polygon(10_000);
+    let refs: Vec<String> = (0..300)
+        .map(|i| {
+            format!(
+                r#"{{"op":"extrude","source_2d_sdf":"p","extrude_depth":1,"pos":[{},{},0]}}"#,
+                0.01 * f64::from(i),
+                0.013 * f64::from(i)
+            )
+        })
+        .collect();
+    let scene = dir.path("refs.json");
+    fs::write(
+        &scene,
+        format!(
+            r#"{{"kind":"sdf_scene","version":1,"sdf_2d":{{"p":{{"type":"polygon","points":[{}]}}}},"tree":{{"op":"union","children":[{}]}}}}"#,
+            points.join(","),
+            refs.join(",")
+        ),
+    )
+    .unwrap();
+    let out = dir.path("refs.obj");
+    let t = Instant::now();
+    let run = bspcsg([
+        "export".as_ref(),
+        scene.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(1);
+    assert!(
+        t.elapsed() < Duration::from_secs(5),
+        "refused before any work"
+    );
+    for needle in [
+        "refs.json",
+        "300 primitives",
+        "18000000 polygon corners",
+        "budget of 16777216",
+        "2D shapes of fewer points",
+    ] {
+        assert!(run.stderr.contains(needle), "{needle}: {}", run.stderr);
+    }
+    assert!(!out.exists());
+    // 50,000 boxes in one union: 1.2 million corners over 16 levels.
+    let boxes: Vec<String> = (0..50_000)
+        .map(|i| {
+            let f = f64::from(i);
+            format!(
+                r#"{{"kind":"sdf_primitive","pos":[{},{},{}],"data":{{"primitive_type":"box","size":[1,1,1]}}}}"#,
+                (f * 0.618).fract() * 5.0,
+                (f * 0.414).fract() * 5.0,
+                (f * 0.732).fract() * 5.0
+            )
+        })
+        .collect();
+    let s = bspcsg::Scene::from_json_str(&format!(
+        r#"{{"op":"union","children":[{}]}}"#,
+        boxes.join(",")
+    ))
+    .unwrap();
+    let t = Instant::now();
+    let err = s
+        .to_solid(&bspcsg::TessellationOptions::default())
+        .unwrap_err();
+    assert!(t.elapsed() < Duration::from_secs(5));
+    assert!(
+        err.to_string().contains("about 19200000 units of work"),
+        "{err}"
+    );
+    // Four unit spheres at 2.4·10⁻⁶: within the polygon budget (4.1 million), not the work.
+    let sphere = |x: f64| {
+        format!(
+            r#"{{"kind":"sdf_primitive","pos":[{x},0,0],"data":{{"primitive_type":"sphere","radius":1}}}}"#
+        )
+    };
+    let s = bspcsg::Scene::from_json_str(&format!(
+        r#"{{"op":"union","children":[{},{},{},{}]}}"#,
+        sphere(0.0),
+        sphere(0.5),
+        sphere(1.0),
+        sphere(1.5)
+    ))
+    .unwrap();
+    let err = s
+        .to_solid(&bspcsg::TessellationOptions::with_tolerance(2.4e-6))
+        .unwrap_err();
+    let message = err.to_string();
+    assert!(message.contains("units of work"), "{message}");
+    let enough: f64 = message
+        .split("a tolerance of at least ")
+        .nth(1)
+        .and_then(|r| r.split(',').next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(enough > 2.4e-6 && enough < 1e-5, "{enough}");
 }
 
 #[test]
@@ -901,4 +1198,45 @@ fn a_watertight_mesh_far_from_the_origin_has_no_degenerate_triangles() {
     assert_eq!(json["genus"], 0, "{json}");
     let report = read_mesh(&path).unwrap().report();
     assert!(report.is_closed_manifold(), "{report}");
+}
+
+/// A scene whose only part is thinner than a marching-cubes cell: the export says the part
+/// was lost between the grid's points and names a cell that keeps it; that cell, and the BSP
+/// route, do.
+#[test]
+fn a_part_thinner_than_a_cell_is_reported_lost_with_a_cell_that_keeps_it() {
+    let dir = Scratch::new("thin-part");
+    let scene = dir.path("sheet.json");
+    fs::write(
+        &scene,
+        r#"{"kind":"sdf_primitive","data":{"primitive_type":"box","size":[1,1,0.004]}}"#,
+    )
+    .unwrap();
+    let out = dir.path("sheet.obj");
+    let export = |extra: &[&str]| {
+        let mut args: Vec<&OsStr> = vec!["export".as_ref(), scene.as_os_str()];
+        args.extend(extra.iter().map(OsStr::new));
+        args.extend(["-o".as_ref(), out.as_os_str()]);
+        bspcsg(&args).ok()
+    };
+    let run = export(&["--via", "sdf"]);
+    assert!(run.stderr.contains("found no surface"), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("thinnest extent is 4.000e-3"),
+        "{}",
+        run.stderr
+    );
+    let cell = run
+        .stderr
+        .split("--cell ")
+        .nth(1)
+        .and_then(|r| r.split_whitespace().next())
+        .unwrap()
+        .to_owned();
+    let run = export(&["--via", "sdf", "--cell", &cell]);
+    assert!(!run.stderr.contains("found no surface"), "{}", run.stderr);
+    let volume = read_mesh(&out).unwrap().volume();
+    assert!((volume - 4e-3).abs() < 2e-3, "{volume}");
+    export(&["--via", "bsp"]);
+    assert!((read_mesh(&out).unwrap().volume() - 4e-3).abs() < 1e-12);
 }

@@ -6,6 +6,7 @@ use crate::error::{Error, MeshDefect, Result};
 use crate::geom::is_zero_area;
 use crate::hash::{FxBuild, FxHashMap};
 use crate::polygon::{Polygon, Vertices};
+use crate::solid::Solid;
 use crate::topology::{check_closed, check_face_indices, check_finite};
 
 /// How [`Solid::from_mesh_with`](crate::Solid::from_mesh_with) treats its input. The default is strict; see
@@ -33,6 +34,14 @@ pub struct FromMeshOptions {
     /// stays where it was and no vertex is dropped, so the surface and its edges are exactly
     /// those of the triangles: no T-junctions, no collinear corners.
     pub merge_coplanar: bool,
+    /// Take a closed mesh whose shells cross one another (two overlapping boxes written into
+    /// one file) as the union of its shells (default `false`: refused as
+    /// [`SelfIntersecting`](crate::MeshDefect::SelfIntersecting)). Each shell, with the
+    /// cavities inside it, is built as a solid on its own and the solids are united. Only
+    /// where each shell is a solid on its own: a shell that crosses itself is still refused,
+    /// as [`ShellCrossesItself`](crate::MeshDefect::ShellCrossesItself) naming the crossing.
+    /// Needs [`require_closed`](Self::require_closed) (a lenient read takes the mesh as it is).
+    pub union_shells: bool,
 }
 
 impl Default for FromMeshOptions {
@@ -40,6 +49,7 @@ impl Default for FromMeshOptions {
         FromMeshOptions {
             require_closed: true,
             merge_coplanar: true,
+            union_shells: false,
         }
     }
 }
@@ -55,11 +65,50 @@ impl FromMeshOptions {
         }
     }
 
+    /// These options with [`union_shells`](Self::union_shells) set to `union`.
+    ///
+    /// ```
+    /// use bspcsg::{FromMeshOptions, Mesh, Solid};
+    /// use bspcsg::glam::DVec3;
+    /// // Two unit cubes overlapping, written as one mesh.
+    /// let a = Solid::cube(1.0)?.to_mesh();
+    /// let b = Solid::cube(1.0)?.translate(DVec3::new(0.5, 0.25, 0.25))?.to_mesh();
+    /// let mut both = a.clone();
+    /// let n = both.positions.len() as u32;
+    /// both.positions.extend(&b.positions);
+    /// both.triangles.extend(b.triangles.iter().map(|t| t.map(|i| i + n)));
+    /// both.sources.extend(&b.sources);
+    /// assert!(Solid::from_mesh(&both).is_err()); // crossing shells bound no solid
+    /// let union = Solid::from_mesh_with(&both, &FromMeshOptions::default().with_union_shells(true))?;
+    /// assert!((union.volume() - (2.0 - 0.5 * 0.75 * 0.75)).abs() < 1e-12);
+    /// # Ok::<(), bspcsg::Error>(())
+    /// ```
+    #[must_use]
+    pub fn with_union_shells(mut self, union: bool) -> Self {
+        self.union_shells = union;
+        self
+    }
+
     /// These options with [`merge_coplanar`](Self::merge_coplanar) set to `merge`.
     #[must_use]
     pub fn with_merge_coplanar(mut self, merge: bool) -> Self {
         self.merge_coplanar = merge;
         self
+    }
+}
+
+/// The solid bounded by `mesh`, after the checks [`FromMeshOptions`] asks for; crossing
+/// shells united where [`union_shells`](FromMeshOptions::union_shells) says so.
+pub(crate) fn solid_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Result<Solid> {
+    match polygons_from_mesh(mesh, options) {
+        Err(Error::InvalidMesh {
+            defect: MeshDefect::SelfIntersecting { .. },
+            ..
+        }) if options.union_shells => {
+            let crossing = super::self_intersect::crossing_pairs(&mesh.positions, &mesh.triangles);
+            super::overlapping::union_of_shells(mesh, options, &crossing)
+        }
+        other => other.map(Solid::from_polygons),
     }
 }
 

@@ -191,6 +191,7 @@ impl Mesh {
 
 pub(crate) mod import;
 pub(crate) mod needles;
+mod overlapping;
 pub(crate) mod repair;
 pub(crate) mod report;
 pub(crate) mod self_intersect;

@@ -173,11 +173,25 @@ pub(crate) fn render_tiles(
     shade: impl Fn(&Tile, &mut Vec<DVec3>) + Sync,
 ) -> Image {
     let (w, h) = (frame.width, frame.height);
+    let mut img = Image::new(w, h);
+    img.pixels = shade_tiles(w, h, progress, shade);
+    img
+}
+
+/// Fills every tile of a `w` × `h` grid in parallel (`shade` fills a tile's values row by
+/// row), reports progress as `(tiles done, tiles)`, and lays the values out row by row: the
+/// loop of the renderers and of the check's ray views, whatever a pixel holds.
+pub(crate) fn shade_tiles<T: Copy + Default + Send>(
+    w: u32,
+    h: u32,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    shade: impl Fn(&Tile, &mut Vec<T>) + Sync,
+) -> Vec<T> {
     let tiles = Tile::grid(w, h);
     let done = AtomicUsize::new(0);
     let total = tiles.len();
     let every = (total / 100).max(1);
-    let rendered: Vec<(Tile, Vec<DVec3>)> = tiles
+    let shaded: Vec<(Tile, Vec<T>)> = tiles
         .par_iter()
         .map(|t| {
             let mut buf = Vec::with_capacity(t.pixels());
@@ -189,15 +203,15 @@ pub(crate) fn render_tiles(
             (*t, buf)
         })
         .collect();
-    let mut img = Image::new(w, h);
-    for (t, buf) in rendered {
+    let mut grid = vec![T::default(); w as usize * h as usize];
+    for (t, buf) in shaded {
         let tw = (t.x1 - t.x0) as usize;
         for (row, chunk) in buf.chunks(tw).enumerate() {
             let start = ((t.y0 as usize + row) * w as usize) + t.x0 as usize;
-            img.pixels[start..start + tw].copy_from_slice(chunk);
+            grid[start..start + tw].copy_from_slice(chunk);
         }
     }
-    img
+    grid
 }
 
 /// True when the box moving linearly from `a0` to `a1` meets `b` at some moment: the swept

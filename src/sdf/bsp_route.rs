@@ -9,12 +9,13 @@ use super::eval::{Program, map_box};
 use super::marching_cubes::{BakeOptions, Grid, march};
 use super::scene::Scene;
 use super::shapes::Shape;
+use super::shapes2d::{Prim2, Shape2};
 use super::tree::{Frame, NodeId, NodeKind};
 use crate::error::{Error, Result};
 use crate::geom::Aabb;
 use crate::polygon::Polygon;
 use crate::primitives::{MIN_SEGMENTS, segments_for_tolerance};
-use crate::sketch::{ExtrudeOptions, Sketch};
+use crate::sketch::{ExtrudeOptions, Sketch, TWIST_DEGREES_PER_SLICE};
 use crate::solid::BoolOp;
 use crate::solid::Solid;
 
@@ -142,6 +143,15 @@ struct Ctx<'a> {
 /// out of memory.
 pub const MAX_SCENE_POLYGONS: u64 = crate::primitives::MAX_POLYGONS;
 
+/// The most boolean work the BSP route takes on for a scene: the polygon corners of all its
+/// primitives times the levels of the balanced reduction that combines them
+/// (`⌈log₂ primitives⌉`, at least 1), each level clipping every corner once or more. 2²⁴:
+/// about a minute and 1–2 GB on a 2-core machine (twenty unions of one 10,000-point polygon
+/// extruded, 6·10⁶, take 38 s and 1 GB). Past it — 300 references to one 10,000-point polygon,
+/// 100,000 overlapping boxes, four unit spheres at a tolerance of 2.4·10⁻⁶ — the export is
+/// refused at once, saying what to change.
+pub const MAX_SCENE_WORK: u64 = 1 << 24;
+
 impl Ctx<'_> {
     /// Refuses a scene whose round primitives would need more than [`MAX_SCENE_POLYGONS`]
     /// polygons in all at this tolerance, before any is made; the message says what tolerance
@@ -150,7 +160,9 @@ impl Ctx<'_> {
     /// grid budget.
     fn check_budget(&self, root: NodeId) -> Result<()> {
         let tree = &self.scene.tree;
-        let mut total: u64 = 0;
+        let (mut total, mut corners, mut leaves): (u64, u64, u64) = (0, 0, 0);
+        // Corners of round primitives, which a coarser tolerance reduces.
+        let mut round: u64 = 0;
         let mut work = vec![(root, Frame::WORLD)];
         while let Some((id, parent)) = work.pop() {
             let node = tree.node(id);
@@ -166,7 +178,13 @@ impl Ctx<'_> {
                 NodeKind::Op { .. } => {}
                 NodeKind::Leaf { shape, .. } => {
                     let frame = parent.child(&node.transform);
-                    total = total.saturating_add(self.estimate(shape, &frame)?);
+                    let (p, c) = self.estimate(shape, &frame)?;
+                    if p > 6 {
+                        round = round.saturating_add(c);
+                    }
+                    total = total.saturating_add(p);
+                    corners = corners.saturating_add(c);
+                    leaves += 1;
                 }
             }
         }
@@ -183,26 +201,106 @@ impl Ctx<'_> {
                 ),
             ));
         }
+        let levels = u64::from(leaves.max(2).next_power_of_two().trailing_zeros());
+        let work = corners.saturating_mul(levels);
+        if work > MAX_SCENE_WORK {
+            return Err(Error::param(
+                "tolerance",
+                self.tol,
+                format!(
+                    "the scene's {leaves} primitives would have about {corners} polygon corners, \
+                     combined over {levels} levels of booleans: about {work} units of work, more \
+                     than the budget of {MAX_SCENE_WORK} (about a minute); use {}",
+                    if 2 * round > corners {
+                        // Round primitives' corners go as 1/tolerance.
+                        format!(
+                            "a tolerance of at least {:.2e}, or fewer round primitives",
+                            self.tol * work as f64 / MAX_SCENE_WORK as f64
+                        )
+                    } else {
+                        "fewer primitives or 2D shapes of fewer points (a tolerance changes only \
+                         round parts), or the marching-cubes route (--via sdf)"
+                            .to_owned()
+                    }
+                ),
+            ));
+        }
         Ok(())
     }
 
-    /// About how many polygons the tessellation of `shape` has (exact for round primitives).
-    fn estimate(&self, shape: &Shape, frame: &Frame) -> Result<u64> {
+    /// About how many polygons and polygon corners the tessellation of `shape` has (exact
+    /// for round primitives; profiles by their points and the turn's or twist's slices).
+    fn estimate(&self, shape: &Shape, frame: &Frame) -> Result<(u64, u64)> {
         let n = |r: f64| self.segments(r, frame).map(u64::from);
         Ok(match shape {
             Shape::Sphere { radius } => {
                 let s = n(*radius)?;
-                s * (s / 2).max(2)
+                let p = s * (s / 2).max(2);
+                (p, 4 * p)
             }
-            Shape::Cylinder { radius, .. } => n(*radius)? + 2,
+            Shape::Cylinder { radius, .. } => (n(*radius)? + 2, 6 * n(*radius)?),
             Shape::Cone {
                 r_bottom, r_top, ..
-            } => n(r_bottom.max(*r_top))? + 2,
-            Shape::Torus { major, minor } => n(major + minor)? * n(*minor)?,
-            // Profiles: their own point budget bounds them; the turn multiplies.
-            Shape::Revolve { .. } | Shape::Extrude(_) => 0,
-            Shape::Box { .. } | Shape::Pyramid { .. } | Shape::Plane { .. } => 6,
+            } => {
+                let s = n(r_bottom.max(*r_top))?;
+                (s + 2, 6 * s)
+            }
+            Shape::Torus { major, minor } => {
+                let p = n(major + minor)? * n(*minor)?;
+                (p, 4 * p)
+            }
+            // Profiles: their own point budget bounds the polygons; the corners count.
+            Shape::Extrude(e) => {
+                let points = self.profile_points(&e.shape, frame)?;
+                let slices = (e.twist.abs() / TWIST_DEGREES_PER_SLICE).ceil().max(1.0) as u64;
+                // Walls: a quad per edge, or two triangles per edge and slice when twisted.
+                let walls = if e.twist == 0.0 { 4 } else { 6 * slices };
+                (0, points * walls + 2 * points)
+            }
+            Shape::Revolve { shape, angle } => {
+                let points = self.profile_points(shape, frame)?;
+                let turn = (angle.abs() / 360.0).min(1.0);
+                let segments = (n(self.profile_reach(shape))? as f64 * turn).ceil() as u64;
+                (0, 4 * points * segments.max(1))
+            }
+            Shape::Box { .. } | Shape::Plane { .. } => (6, 24),
+            Shape::Pyramid { .. } => (5, 16),
         })
+    }
+
+    /// About how many points the outline of a 2D shape has at this tolerance: every placed
+    /// primitive's, round ones by their chordal segment counts.
+    fn profile_points(&self, shape: &Shape2, frame: &Frame) -> Result<u64> {
+        let mut points: u64 = 0;
+        for (prim, _) in shape.parts().0 {
+            points = points.saturating_add(match prim {
+                Prim2::Rect { .. } => 4,
+                Prim2::Polygon { points } => points.len() as u64,
+                Prim2::RegularPolygon { sides, .. } => u64::from(*sides),
+                Prim2::Circle { radius } => u64::from(self.segments(*radius, frame)?),
+                Prim2::RoundedRect { radius, .. } => 4 + u64::from(self.segments(*radius, frame)?),
+            });
+        }
+        Ok(points)
+    }
+
+    /// The farthest a 2D shape's primitives reach from the axis (for a revolution's segments).
+    fn profile_reach(&self, shape: &Shape2) -> f64 {
+        shape
+            .parts()
+            .0
+            .iter()
+            .map(|(prim, place)| {
+                let r = match prim {
+                    Prim2::Rect { half } | Prim2::RoundedRect { half, .. } => half.length(),
+                    Prim2::Circle { radius } | Prim2::RegularPolygon { radius, .. } => *radius,
+                    Prim2::Polygon { points } => {
+                        points.iter().map(|p| p.length()).fold(0.0, f64::max)
+                    }
+                };
+                place.pos.length() + r
+            })
+            .fold(0.0, f64::max)
     }
 
     fn solid(&self, root: NodeId) -> Result<Solid> {
@@ -260,6 +358,7 @@ impl Ctx<'_> {
         else {
             return Ok(Solid::empty());
         };
+        super::bake_budget::check_bake_work(&program, &grid)?;
         let mut mesh = march(&program, grid, opts.refine_steps)?;
         super::assign_sources(&program, &mut mesh);
         let polygons = (0..mesh.triangle_count())

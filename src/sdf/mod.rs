@@ -8,6 +8,7 @@
 //!            └─► tessellated primitives ─► BSP booleans (smooth subtrees baked) ─► Solid
 //! ```
 
+mod bake_budget;
 mod bsp_route;
 mod cull;
 mod eval;
@@ -20,7 +21,8 @@ mod tree;
 
 use rayon::prelude::*;
 
-pub use bsp_route::{DEFAULT_MAX_ANGLE, MAX_SCENE_POLYGONS, TessellationOptions};
+pub use bake_budget::MAX_BAKE_WORK;
+pub use bsp_route::{DEFAULT_MAX_ANGLE, MAX_SCENE_POLYGONS, MAX_SCENE_WORK, TessellationOptions};
 pub(crate) use cull::{Culler, Pruned};
 pub use marching_cubes::{
     BakeOptions, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL, MAX_REFINE_STEPS,
@@ -64,6 +66,7 @@ impl Scene {
         let Some(grid) = marching_cubes::Grid::new(&self.bound.bbox, opts)? else {
             return Ok(Mesh::default());
         };
+        bake_budget::check_bake_work(&self.program, &grid)?;
         let mut mesh = marching_cubes::march(&self.program, grid, opts.refine_steps)?;
         assign_sources(&self.program, &mut mesh);
         // Where the surface passes within a hair of a grid vertex, the triangles of the cells

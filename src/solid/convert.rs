@@ -88,7 +88,7 @@ impl Solid {
     /// [`Error::InvalidMesh`](crate::Error::InvalidMesh) with the [`MeshDefect`](crate::MeshDefect) in the cases listed
     /// above.
     pub fn from_mesh_with(mesh: &Mesh, options: &FromMeshOptions) -> Result<Solid> {
-        import::polygons_from_mesh(mesh, options).map(Solid::from_polygons)
+        import::solid_from_mesh(mesh, options)
     }
 }
 

@@ -203,6 +203,12 @@ pub(crate) struct BooleanArgs {
     /// is written even where it is not closed (with a warning), which is otherwise refused.
     #[arg(long)]
     pub(crate) allow_open: bool,
+
+    /// Take an input whose closed shells overlap (two boxes written into one file) as the
+    /// union of its shells, each shell a solid on its own; otherwise such an input is refused
+    /// (exit 2). A shell that crosses itself is refused either way, naming the crossing.
+    #[arg(long)]
+    pub(crate) union_shells: bool,
 }
 
 #[derive(Args)]

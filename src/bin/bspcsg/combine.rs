@@ -20,7 +20,8 @@ pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Re
         FromMeshOptions::lenient()
     } else {
         FromMeshOptions::default()
-    };
+    }
+    .with_union_shells(args.union_shells);
     let mut solids = Vec::with_capacity(args.inputs.len());
     let mut materials = Vec::with_capacity(args.inputs.len());
     for (i, path) in args.inputs.iter().enumerate() {
@@ -35,6 +36,9 @@ pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Re
                     " (reverse its faces' winding to make it a solid; --allow-open goes on \
                      with it as it is)",
                 ),
+                Some(MeshDefect::SelfIntersecting { .. }) if !args.union_shells => {
+                    Some(" (pass --union-shells to take its shells as their union)")
+                }
                 _ => None,
             };
             let mut f = Failure::from(e);

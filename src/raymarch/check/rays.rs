@@ -2,7 +2,6 @@
 //! BVH) from each view; hit/miss agreement, depth differences, and the difference image.
 
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::report::stats;
 use super::{CheckOptions, RayStats};
@@ -11,7 +10,7 @@ use crate::raymarch::bvh::MeshBvh;
 use crate::raymarch::camera::{Camera, framing_bounds};
 use crate::raymarch::image::{Rgb8, encode_srgb};
 use crate::raymarch::march::SceneTracer;
-use crate::raymarch::render::{RenderOptions, Tile};
+use crate::raymarch::render::{RenderOptions, shade_tiles};
 use crate::sdf::Scene;
 
 pub(super) struct RayViews {
@@ -52,44 +51,30 @@ pub(super) fn ray_views(
         opts_v.profile.max_distance = opts_v.profile.max_distance.max(reach);
         let frame = camera.frame()?;
         let tracer = SceneTracer::new(scene, frame, &opts_v);
-        let tiles = Tile::grid(n, n);
-        let pairs: Vec<(Tile, Vec<PixelPair>)> = tiles
-            .par_iter()
-            .map(|t| {
-                let prog = tracer.beam_program(t.x0 as f64, t.y0 as f64, t.x1 as f64, t.y1 as f64);
-                let mut out = Vec::with_capacity(t.pixels());
-                for y in t.y0..t.y1 {
-                    for x in t.x0..t.x1 {
-                        let ray = frame.ray(x as f64 + 0.5, y as f64 + 0.5);
-                        let s = tracer.trace(&prog, &ray).map(|h| (h.t, h.p));
-                        let m = bvh
-                            .intersect(&ray, 0.0, f64::INFINITY)
-                            .map(|h| (h.t, ray.at(h.t)));
-                        let grazing = match (s, m) {
-                            (Some((_, p)), None) => {
-                                bvh.closest_point(p, tol).is_some_and(|(_, d, _)| d <= tol)
-                            }
-                            (None, Some((_, q))) => scene.distance(q).abs() <= tol,
-                            _ => false,
-                        };
-                        out.push(PixelPair {
-                            sdf: s,
-                            mesh: m,
-                            grazing,
-                        });
-                    }
+        let grid = shade_tiles(n, n, &|_, _| {}, |t, out| {
+            let prog = tracer.beam_program(t.x0 as f64, t.y0 as f64, t.x1 as f64, t.y1 as f64);
+            for y in t.y0..t.y1 {
+                for x in t.x0..t.x1 {
+                    let ray = frame.ray(x as f64 + 0.5, y as f64 + 0.5);
+                    let s = tracer.trace(&prog, &ray).map(|h| (h.t, h.p));
+                    let m = bvh
+                        .intersect(&ray, 0.0, f64::INFINITY)
+                        .map(|h| (h.t, ray.at(h.t)));
+                    let grazing = match (s, m) {
+                        (Some((_, p)), None) => {
+                            bvh.closest_point(p, tol).is_some_and(|(_, d, _)| d <= tol)
+                        }
+                        (None, Some((_, q))) => scene.distance(q).abs() <= tol,
+                        _ => false,
+                    };
+                    out.push(PixelPair {
+                        sdf: s,
+                        mesh: m,
+                        grazing,
+                    });
                 }
-                (*t, out)
-            })
-            .collect();
-        let mut grid = vec![PixelPair::default(); (n * n) as usize];
-        for (t, out) in pairs {
-            let tw = (t.x1 - t.x0) as usize;
-            for (row, chunk) in out.chunks(tw).enumerate() {
-                let start = (t.y0 as usize + row) * n as usize + t.x0 as usize;
-                grid[start..start + tw].copy_from_slice(chunk);
             }
-        }
+        });
         views.push(grid);
     }
     let mut agree = 0usize;
