@@ -185,23 +185,7 @@ fn filled_boundary(pieces: &[[DVec2; 2]], rule: FillRule, eps: f64) -> Vec<[DVec
         half.push((b, a));
     }
     let (next, _) = next_around_faces(pts, &half);
-    let mut face = vec![u32::MAX; half.len()];
-    let mut face_area: Vec<f64> = Vec::new();
-    for h in 0..half.len() {
-        if face[h] != u32::MAX {
-            continue;
-        }
-        let f = face_area.len() as u32;
-        let (mut area, origin) = (0.0, pts[half[h].0 as usize]);
-        let mut g = h;
-        while face[g] == u32::MAX {
-            face[g] = f;
-            let (a, b) = half[g];
-            area += (pts[a as usize] - origin).perp_dot(pts[b as usize] - origin);
-            g = next[g] as usize;
-        }
-        face_area.push(area);
-    }
+    let (face, face_area) = label_faces(pts, &half, &next);
     // Connected components, each with its unbounded face (the most negative one).
     let mut sets = DisjointSets::new(pts.len());
     for &(a, b, _) in &graph.edges {
@@ -258,31 +242,7 @@ fn filled_boundary(pieces: &[[DVec2; 2]], rule: FillRule, eps: f64) -> Vec<[DVec
         }
         winding[outer as usize] = base;
     }
-    // Propagate across edges: crossing half-edge h from its right face to its left adds the
-    // edge's count in h's direction.
-    let mut face_halves: Vec<Vec<u32>> = vec![Vec::new(); face_area.len()];
-    for (h, &f) in face.iter().enumerate() {
-        face_halves[f as usize].push(h as u32);
-    }
-    let mut queue: Vec<u32> = (0..face_area.len() as u32)
-        .filter(|&f| winding[f as usize] != i64::MIN)
-        .collect();
-    while let Some(f) = queue.pop() {
-        let w = winding[f as usize];
-        for &h in &face_halves[f as usize] {
-            // h has face f on its left; its twin has the neighbour on its left.
-            let twin = h ^ 1;
-            let g = face[twin as usize] as usize;
-            if winding[g] != i64::MIN {
-                continue;
-            }
-            let count = graph.edges[(h / 2) as usize].2 as i64;
-            let along = if h % 2 == 0 { count } else { -count };
-            // left(h) = right(h) + along  ⇒  right(h) = left(h) − along.
-            winding[g] = w - along;
-            queue.push(g as u32);
-        }
-    }
+    propagate_windings(&face, &graph.edges, &mut winding);
     let filled = |w: i64| match rule {
         FillRule::EvenOdd => w.rem_euclid(2) == 1,
         FillRule::NonZero => w != 0,
@@ -299,4 +259,56 @@ fn filled_boundary(pieces: &[[DVec2; 2]], rule: FillRule, eps: f64) -> Vec<[DVec
         }
     }
     out
+}
+
+/// The faces of a half-edge graph (`next` walks each face): every half-edge's face, and each
+/// face's doubled signed area (negative for the unbounded face of a component).
+fn label_faces(pts: &[DVec2], half: &[(u32, u32)], next: &[u32]) -> (Vec<u32>, Vec<f64>) {
+    let mut face = vec![u32::MAX; half.len()];
+    let mut face_area: Vec<f64> = Vec::new();
+    for h in 0..half.len() {
+        if face[h] != u32::MAX {
+            continue;
+        }
+        let f = face_area.len() as u32;
+        let (mut area, origin) = (0.0, pts[half[h].0 as usize]);
+        let mut g = h;
+        while face[g] == u32::MAX {
+            face[g] = f;
+            let (a, b) = half[g];
+            area += (pts[a as usize] - origin).perp_dot(pts[b as usize] - origin);
+            g = next[g] as usize;
+        }
+        face_area.push(area);
+    }
+    (face, face_area)
+}
+
+/// Fills in the windings not yet known (`i64::MIN`) from the known ones, across edges:
+/// crossing half-edge h (2k along edge k, 2k + 1 against it) from its right face to its left
+/// adds the edge's count in h's direction.
+fn propagate_windings(face: &[u32], edges: &[(u32, u32, i32)], winding: &mut [i64]) {
+    let mut face_halves: Vec<Vec<u32>> = vec![Vec::new(); winding.len()];
+    for (h, &f) in face.iter().enumerate() {
+        face_halves[f as usize].push(h as u32);
+    }
+    let mut queue: Vec<u32> = (0..winding.len() as u32)
+        .filter(|&f| winding[f as usize] != i64::MIN)
+        .collect();
+    while let Some(f) = queue.pop() {
+        let w = winding[f as usize];
+        for &h in &face_halves[f as usize] {
+            // h has face f on its left; its twin has the neighbour on its left.
+            let twin = h ^ 1;
+            let g = face[twin as usize] as usize;
+            if winding[g] != i64::MIN {
+                continue;
+            }
+            let count = edges[(h / 2) as usize].2 as i64;
+            let along = if h % 2 == 0 { count } else { -count };
+            // left(h) = right(h) + along  ⇒  right(h) = left(h) − along.
+            winding[g] = w - along;
+            queue.push(g as u32);
+        }
+    }
 }
