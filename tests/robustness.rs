@@ -177,9 +177,11 @@ fn union_with_a_box_turned_1e_8_degrees_closes_the_slit() {
 
 /// Found by the same property test: the same kind of crossing, 6.6e-10 rad, where the
 /// intersection is a wedge at most 1e-10 thick. Welds wide enough to close the cut lines'
-/// offset flatten the wedge; filled flat, the slit leaves edges of three triangles. Open.
+/// offset flattened the wedge; now both operands cut their faces on the one crossing line
+/// (`Polygon::split`, vertices within a tolerance of it, not a tolerance over the angle, count
+/// as on the other plane; points on it are the meet of their planes), so the first weld closes
+/// it.
 #[test]
-#[ignore = "open: a wedge thinner than the widest weld (see the closing note of issue 11)"]
 fn intersection_wedge_1e_10_thick() {
     let a = turned_box([1, 1, -2], [6, 3, 4], [0.0, 0.0, 1.0], 0.0);
     let b = turned_box(

@@ -8,7 +8,7 @@ use crate::bsp::{Coplanar, FOCUS_MARGIN, Label, Surface, Tree};
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, Plane, Tolerance};
 use crate::hash::{KeyedHashMap, key};
-use crate::polygon::{Polygon, Split};
+use crate::polygon::{Polygon, Split, attach_edge_planes};
 
 /// A boolean operation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -228,13 +228,17 @@ fn cut_down(polys: Vec<Polygon>, other: &Aabb, eps: f64) -> Vec<Polygon> {
     out
 }
 
+/// The polygons near the other surface, the ones clipped, each edge knowing its neighbour's
+/// plane where the neighbour is among them (see [`attach_edge_planes`]).
 fn pick(polys: &[Polygon], near: &[bool]) -> Vec<Polygon> {
-    polys
+    let mut picked: Vec<Polygon> = polys
         .iter()
         .zip(near)
         .filter(|(_, n)| **n)
         .map(|(p, _)| p.clone())
-        .collect()
+        .collect();
+    attach_edge_planes(&mut picked);
+    picked
 }
 
 fn boxes(polys: &[Polygon], near: &[bool]) -> Vec<Aabb> {
