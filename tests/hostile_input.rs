@@ -777,6 +777,73 @@ fn overlapping_shells_are_united_when_asked_and_a_shell_through_itself_is_refuse
     assert!(run.stderr.contains("--union-shells"), "{}", run.stderr);
 }
 
+/// The count `info` prints on its line `crossing triangle pairs`.
+fn info_crossing_pairs(mesh: &Path) -> usize {
+    let info = bspcsg(["info".as_ref(), mesh.as_os_str()]).ok();
+    info.stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("crossing triangle pairs"))
+        .unwrap_or_else(|| panic!("{}", info.stdout))
+        .trim()
+        .parse()
+        .unwrap()
+}
+
+/// Shells that overlap only in shared planes (no edge through a face) are found by their
+/// coplanar faces facing the same way; shells face to face (facing opposite ways) touch.
+#[test]
+fn shells_overlapping_in_shared_planes_are_refused_and_face_to_face_ones_accepted() {
+    let dir = Scratch::new("shell-planes");
+    let unit = ([0.0; 3], [1.0; 3], false);
+    let moved = dir.path("moved.obj");
+    fs::write(
+        &moved,
+        boxes_obj(&[unit, ([0.5, 0.0, 0.0], [1.5, 1.0, 1.0], false)]),
+    )
+    .unwrap();
+    let alone = dir.path("alone.obj");
+    fs::write(&alone, box_obj_text([5.0; 3], [6.0; 3])).unwrap();
+    assert!(info_crossing_pairs(&moved) > 0);
+    let out = dir.path("out.obj");
+    let run = bspcsg([
+        "union".as_ref(),
+        moved.as_os_str(),
+        alone.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(2);
+    assert!(run.stderr.contains("self-intersecting"), "{}", run.stderr);
+    assert!(run.stderr.contains("moved.obj"), "{}", run.stderr);
+    assert!(!out.exists());
+    // As their union: 1.5, and 2.5 with the far box.
+    let options = bspcsg::FromMeshOptions::default().with_union_shells(true);
+    assert_eq!(bspcsg::read_solid(&moved, &options).unwrap().volume(), 1.5);
+    assert_eq!(union_shells_volume(&dir, &[&moved, &alone]), 2.5);
+    // Stacked face to face (moved off the corners, which welding would join into edges of
+    // four faces): coplanar faces that overlap facing opposite ways touch. Volume 2.
+    let stacked = dir.path("stacked.obj");
+    let top = ([0.25, 0.25, 1.0], [1.25, 1.25, 2.0], false);
+    fs::write(&stacked, boxes_obj(&[unit, top])).unwrap();
+    assert_eq!(info_crossing_pairs(&stacked), 0);
+    let solid = bspcsg::read_solid(&stacked, &bspcsg::FromMeshOptions::default()).unwrap();
+    assert!((solid.volume() - 2.0).abs() < 1e-12, "{}", solid.volume());
+    // The same cube twice: each triangle crosses its copy; refused.
+    let twice = dir.path("twice.obj");
+    fs::write(&twice, boxes_obj(&[unit, unit])).unwrap();
+    assert!(info_crossing_pairs(&twice) >= 12);
+    let run = bspcsg([
+        "union".as_ref(),
+        twice.as_os_str(),
+        alone.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(2);
+    assert!(run.stderr.contains("twice.obj"), "{}", run.stderr);
+    assert!(!out.exists());
+}
+
 #[test]
 fn scene_exports_over_the_polygon_budget_are_refused_with_a_tolerance_that_fits() {
     let dir = Scratch::new("scene-budget");

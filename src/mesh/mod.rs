@@ -142,8 +142,11 @@ impl Mesh {
 
     /// The pairs of triangles whose interiors cross (indices, smaller first, sorted): empty for
     /// the surface of a solid; overlapping shells, or a shell through itself, give some. Exact
-    /// (orientation predicates on the coordinates as stored); triangles that share a vertex or
-    /// only touch (along an edge, at a point, in a common plane) do not count.
+    /// (orientation predicates on the coordinates as stored). An edge of one through the
+    /// other's interior counts, and so do two triangles in one plane facing the same way whose
+    /// interiors overlap (shells meeting only in shared planes; a triangle and its copy);
+    /// triangles that only touch (along an edge, at a point, face to face facing opposite
+    /// ways) do not.
     /// [`crate::Solid::from_mesh`] refuses a closed mesh that has any.
     #[must_use]
     pub fn crossing_triangle_pairs(&self) -> Vec<[u32; 2]> {

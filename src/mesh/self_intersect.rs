@@ -3,10 +3,16 @@
 //! use (its volume counts the overlap twice); this finds it.
 //!
 //! Candidate pairs come from a BVH over the triangles' boxes ([`crate::geom::bvh`]); each is
-//! decided by exact orientation predicates (Shewchuk's adaptive `orient3d`), so rounding
-//! never invents or hides a crossing. Only proper crossings count: an edge of one triangle
-//! passing strictly through the other's interior. Triangles that share a vertex, and contacts
-//! along edges, at vertices or in a common plane, are touching, not crossing.
+//! decided by exact orientation predicates (Shewchuk's adaptive `orient3d` and `orient2d`), so
+//! rounding never invents or hides a crossing. Two kinds of pair count:
+//! - an edge of one triangle passing strictly through the other's interior;
+//! - two triangles in one plane, facing the same way, whose interiors overlap: material on the
+//!   same side of both, so the shells behind them overlap (two cubes moved along one axis meet
+//!   only so: their side faces lie in common planes). The same triangle twice counts.
+//!
+//! Contacts along edges, at vertices, and coplanar triangles facing opposite ways (two solids
+//! face to face) are touching, not crossing. Triangles that share a vertex cross only in a
+//! common plane (a shell's neighbours never overlap there, so valid meshes give nothing).
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -33,8 +39,7 @@ pub(crate) fn crossing_pairs(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec
                     let u = u as usize;
                     if u > t
                         && boxes[u].overlaps(&b, 0.0)
-                        && !triangles[u].iter().any(|i| tri.contains(i))
-                        && cross(corners(t), corners(u))
+                        && cross(tri, triangles[u], corners(t), corners(u))
                     {
                         found.push((t as u32, u as u32));
                     }
@@ -49,7 +54,7 @@ pub(crate) fn crossing_pairs(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec
 }
 
 /// The sign of the exact orientation of `d` against the plane through `a`, `b`, `c`.
-fn orient(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
+fn orient([a, b, c]: [DVec3; 3], d: DVec3) -> f64 {
     let p = |v: DVec3| robust::Coord3D {
         x: v.x,
         y: v.y,
@@ -58,20 +63,80 @@ fn orient(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
     robust::orient3d(p(a), p(b), p(c), p(d))
 }
 
-/// True when segment `pq` passes strictly through the interior of triangle `abc`.
-fn pierces([p, q]: [DVec3; 2], [a, b, c]: [DVec3; 3]) -> bool {
-    let (sp, sq) = (orient(a, b, c, p), orient(a, b, c, q));
+/// True when segment `pq`, whose ends lie on the sides `sp`, `sq` of triangle `abc`'s plane
+/// (signs of [`orient`]), passes strictly through the triangle's interior.
+fn pierces([p, q]: [DVec3; 2], [sp, sq]: [f64; 2], [a, b, c]: [DVec3; 3]) -> bool {
     if !(sp > 0.0 && sq < 0.0 || sp < 0.0 && sq > 0.0) {
         return false;
     }
-    let (s1, s2, s3) = (orient(p, q, a, b), orient(p, q, b, c), orient(p, q, c, a));
+    let (s1, s2, s3) = (
+        orient([p, q, a], b),
+        orient([p, q, b], c),
+        orient([p, q, c], a),
+    );
     s1 > 0.0 && s2 > 0.0 && s3 > 0.0 || s1 < 0.0 && s2 < 0.0 && s3 < 0.0
 }
 
-/// True when an edge of either triangle passes strictly through the other.
-fn cross(t: [DVec3; 3], u: [DVec3; 3]) -> bool {
-    let edges = |v: [DVec3; 3]| [[v[0], v[1]], [v[1], v[2]], [v[2], v[0]]];
-    edges(t).into_iter().any(|e| pierces(e, u)) || edges(u).into_iter().any(|e| pierces(e, t))
+/// True when triangles `t` and `u` (vertex indices `ti`, `ui`; corners `tc`, `uc`) cross: an
+/// edge of either passes strictly through the other, or they lie in one plane, face the same
+/// way and their interiors overlap.
+fn cross(ti: [u32; 3], ui: [u32; 3], tc: [DVec3; 3], uc: [DVec3; 3]) -> bool {
+    if ui.iter().any(|i| ti.contains(i)) {
+        // Neighbours: a shared corner lies on both planes by construction, so only the other
+        // corners decide whether the two are coplanar (rarely: then the 2D test).
+        let off_plane = |own: [u32; 3], c: [DVec3; 3], other: [u32; 3], plane: [DVec3; 3]| {
+            (0..3).any(|k| !other.contains(&own[k]) && orient(plane, c[k]) != 0.0)
+        };
+        return !off_plane(ui, uc, ti, tc)
+            && !off_plane(ti, tc, ui, uc)
+            && coplanar_overlap(tc, uc);
+    }
+    let st = tc.map(|p| orient(uc, p));
+    let su = uc.map(|p| orient(tc, p));
+    if st.iter().chain(&su).all(|&s| s == 0.0) {
+        return coplanar_overlap(tc, uc);
+    }
+    let edges = |v: [DVec3; 3], s: [f64; 3]| {
+        [(0, 1), (1, 2), (2, 0)].map(|(i, j)| ([v[i], v[j]], [s[i], s[j]]))
+    };
+    edges(tc, st).into_iter().any(|(e, s)| pierces(e, s, uc))
+        || edges(uc, su).into_iter().any(|(e, s)| pierces(e, s, tc))
+}
+
+/// For two triangles in one plane: true when they face the same way and their interiors
+/// overlap. Exact: both are projected by dropping the coordinate along which the plane's
+/// normal is largest (which only forgets a coordinate, and keeps the plane one-to-one with its
+/// image), then decided by `orient2d`. Two convex polygons' interiors are disjoint exactly
+/// when the line through some edge of one has the other wholly on its closed outer side; this
+/// also settles the cases a test of crossing edges and strictly inner corners misses (one
+/// triangle inside the other with every corner on its boundary, or the same triangle twice).
+fn coplanar_overlap(t: [DVec3; 3], u: [DVec3; 3]) -> bool {
+    let normal = |v: [DVec3; 3]| (v[1] - v[0]).cross(v[2] - v[0]).abs();
+    let n = normal(t) + normal(u);
+    let (i, j) = if n.x >= n.y && n.x >= n.z {
+        (1, 2)
+    } else if n.y >= n.z {
+        (2, 0)
+    } else {
+        (0, 1)
+    };
+    let flat = |v: [DVec3; 3]| v.map(|p| robust::Coord { x: p[i], y: p[j] });
+    let (t, u) = (flat(t), flat(u));
+    let turn = |v: [robust::Coord<f64>; 3]| robust::orient2d(v[0], v[1], v[2]);
+    let (ot, ou) = (turn(t), turn(u));
+    // A triangle of no area has no interior; opposite turns are opposite facings (touching).
+    if ot == 0.0 || ou == 0.0 || (ot > 0.0) != (ou > 0.0) {
+        return false;
+    }
+    // Both turn the same way, so one sign says which side of an edge is inside, for either.
+    let inner = |o: f64| if ot > 0.0 { o > 0.0 } else { o < 0.0 };
+    let separates = |v: [robust::Coord<f64>; 3], w: [robust::Coord<f64>; 3]| {
+        (0..3).any(|k| {
+            let (a, b) = (v[k], v[(k + 1) % 3]);
+            !w.iter().any(|&p| inner(robust::orient2d(a, b, p)))
+        })
+    };
+    !separates(t, u) && !separates(u, t)
 }
 
 #[cfg(test)]
@@ -85,6 +150,97 @@ mod tests {
             .unwrap()
             .to_mesh();
         (m.positions, m.triangles)
+    }
+
+    /// Two cubes' triangles in one mesh, the second moved by `offset`; `shared` reuses the
+    /// first cube's vertex indices for the second when it is not moved.
+    fn two_cubes(offset: DVec3, shared: bool) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+        let (mut p, mut t) = cube(DVec3::ZERO);
+        let (q, u) = cube(offset);
+        let n = if shared { 0 } else { p.len() as u32 };
+        if !shared {
+            p.extend(q);
+        }
+        t.extend(u.into_iter().map(|f| f.map(|i| i + n)));
+        (p, t)
+    }
+
+    #[test]
+    fn shells_overlapping_only_in_shared_planes_cross() {
+        // B = A moved 0.5 along x: no edge passes through a face, but the faces y = 0, y = 1,
+        // z = 0 and z = 1 of both overlap facing the same way.
+        let (p, t) = two_cubes(DVec3::new(0.5, 0.0, 0.0), false);
+        let pairs = crossing_pairs(&p, &t);
+        assert!(!pairs.is_empty());
+        for &(a, b) in &pairs {
+            let normal = |k: u32| {
+                let [x, y, z] = t[k as usize].map(|i| p[i as usize]);
+                (y - x).cross(z - x).normalize()
+            };
+            assert!((a as usize) < 12 && (b as usize) >= 12, "{a} {b}");
+            assert_eq!(normal(a), normal(b));
+            assert_eq!(normal(a).x, 0.0, "only the side faces overlap");
+        }
+        // Stacked face to face, or side by side: touching, facing opposite ways.
+        for offset in [DVec3::Z, DVec3::X, DVec3::new(1.0, 0.5, 0.0)] {
+            let (p, t) = two_cubes(offset, false);
+            assert!(crossing_pairs(&p, &t).is_empty(), "{offset}");
+        }
+        // The same cube twice, on copied vertices or on the same ones: each triangle crosses
+        // its copy.
+        for shared in [false, true] {
+            let (p, t) = two_cubes(DVec3::ZERO, shared);
+            let pairs = crossing_pairs(&p, &t);
+            assert!(pairs.len() >= 12, "{shared}: {pairs:?}");
+            assert!((0..12).all(|k| pairs.contains(&(k, k + 12))), "{shared}");
+        }
+    }
+
+    #[test]
+    fn coplanar_triangles_overlap_only_with_interiors_meeting_and_facing_the_same_way() {
+        let v = |x: f64, y: f64| DVec3::new(x, y, 3.0);
+        let big = [v(0.0, 0.0), v(2.0, 0.0), v(0.0, 2.0)];
+        // Inside `big` with every corner on its boundary: no edges cross, no corner is inside.
+        let inside = [v(0.0, 0.0), v(2.0, 0.0), v(1.0, 1.0)];
+        assert!(coplanar_overlap(big, inside));
+        assert!(coplanar_overlap(big, big));
+        assert!(coplanar_overlap(big, [big[1], big[2], big[0]]));
+        // Facing the other way: two solids face to face.
+        assert!(!coplanar_overlap(big, [inside[0], inside[2], inside[1]]));
+        // Neighbours across an edge, and triangles meeting at a corner only.
+        assert!(!coplanar_overlap(
+            big,
+            [v(2.0, 0.0), v(2.0, 2.0), v(0.0, 2.0)]
+        ));
+        assert!(!coplanar_overlap(
+            big,
+            [v(2.0, 0.0), v(4.0, 0.0), v(2.0, 1.0)]
+        ));
+        // Crossing edges only, and one corner strictly inside.
+        assert!(coplanar_overlap(
+            big,
+            [v(1.0, -1.0), v(1.0, 3.0), v(-1.0, 1.0)]
+        ));
+        assert!(coplanar_overlap(
+            big,
+            [v(0.5, 0.5), v(5.0, 4.0), v(4.0, 5.0)]
+        ));
+        // No area, no interior.
+        assert!(!coplanar_overlap(
+            big,
+            [v(0.0, 0.0), v(1.0, 1.0), v(2.0, 2.0)]
+        ));
+        // A tilted plane: the projection drops the largest normal coordinate, exactly.
+        let tilt = |x: f64, y: f64| DVec3::new(x, y, 0.5 * x + 0.25 * y);
+        let a = [tilt(0.0, 0.0), tilt(2.0, 0.0), tilt(0.0, 2.0)];
+        let b = [tilt(0.0, 0.0), tilt(2.0, 0.0), tilt(1.0, 1.0)];
+        assert!(cross([0, 1, 2], [0, 1, 3], a, b));
+        assert!(!cross(
+            [0, 1, 2],
+            [1, 0, 3],
+            a,
+            [b[1], b[0], tilt(1.0, -1.0)]
+        ));
     }
 
     #[test]
