@@ -28,10 +28,10 @@ const UNKNOWN: Plane = Plane {
 /// to their source (materials ride on it).
 ///
 /// Each edge may also know the plane that made it besides the polygon's own: the plane of the
-/// neighbour across it (see [`attach_edge_planes`]) or the plane that cut it. Where two faces
+/// neighbour across it (see `attach_edge_planes`) or the plane that cut it. Where two faces
 /// cross at a tiny angle, a point on their crossing line is only known to a rounding error over
 /// the angle, and each operand computes its own; computed from its three planes the same way by
-/// every polygon that holds it ([`meet`]), it is one point (see [`Polygon::split`]).
+/// every polygon that holds it (`meet`), it is one point (see [`Polygon::split`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polygon {
     vertices: Vertices,
@@ -223,7 +223,7 @@ impl Polygon {
     /// (10⁻⁹° on a box: a band 0.6 wide). Vertices on the plane go to both pieces. An edge from
     /// a front to a back vertex is cut at a point every polygon sharing the edge computes the
     /// same, bit for bit: interpolated, or where the edge runs nearly along the plane (and the
-    /// interpolation is off by a rounding error over that angle), the [`meet`] of the planes the
+    /// interpolation is off by a rounding error over that angle), the `meet` of the planes the
     /// edge lies in and `plane`, which the other operand computes the same way.
     #[must_use]
     pub fn split(&self, plane: &Plane, eps: f64) -> Split {
