@@ -1347,3 +1347,48 @@ fn a_part_thinner_than_a_cell_is_reported_lost_with_a_cell_that_keeps_it() {
     export(&["--via", "bsp"]);
     assert!((read_mesh(&out).unwrap().volume() - 4e-3).abs() < 1e-12);
 }
+
+/// A box with a plate thinner than a cell beside it: the bake is not empty, and the export
+/// names the plate, by its JSON path, as thinner than the cell with a cell that keeps it,
+/// and does not name the box.
+#[test]
+fn a_thin_part_beside_a_big_one_is_named_with_a_cell_that_keeps_it() {
+    let dir = Scratch::new("thin-part-named");
+    let scene = dir.path("box-and-plate.json");
+    fs::write(
+        &scene,
+        r#"{"op":"union","children":[
+            {"kind":"sdf_primitive","data":{"primitive_type":"box","size":[1,1,1]}},
+            {"kind":"sdf_primitive","pos":[2,0,0],"data":{"primitive_type":"box","size":[1,1,0.004]}}
+        ]}"#,
+    )
+    .unwrap();
+    let out = dir.path("box-and-plate.obj");
+    let run = bspcsg(&[
+        "export".as_ref(),
+        scene.as_os_str(),
+        "--via".as_ref(),
+        "sdf".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .ok();
+    // The box is baked: this is the warning for a surface that is there, not an empty one.
+    assert!(!read_mesh(&out).unwrap().is_empty());
+    assert!(!run.stderr.contains("found no surface"), "{}", run.stderr);
+    let warning = run
+        .stderr
+        .lines()
+        .find(|l| l.contains("$.children[1]"))
+        .unwrap_or_else(|| panic!("the plate is not named: {}", run.stderr));
+    assert!(warning.contains("4.000e-3 thin"), "{warning}");
+    assert!(!run.stderr.contains("$.children[0]"), "{}", run.stderr);
+    let cell: f64 = warning
+        .split("--cell ")
+        .nth(1)
+        .and_then(|r| r.split_whitespace().next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(cell > 0.0 && cell < 4e-3, "{cell}");
+}

@@ -25,7 +25,7 @@ pub use profile::RenderProfile;
 pub use shapes2d::MAX_POLYGON_POINTS;
 pub use view::{DEFAULT_FOV_DEG, Light, LightKind, Projection, SceneCamera};
 
-use super::eval::{Bound, Program};
+use super::eval::{Bound, Instr, Program};
 use super::tree::{NodeId, Tree};
 use crate::error::{Error, Result};
 use crate::geom::Aabb;
@@ -170,6 +170,20 @@ impl Scene {
     #[must_use]
     pub fn primitive_paths(&self) -> &[String] {
         &self.primitive_paths
+    }
+
+    /// A conservative world box of each primitive on its own (before any combination), in the
+    /// order of [`Scene::primitive_paths`]; infinite on the sides where the primitive is
+    /// unbounded (a half-space). What a marching-cubes cell must resolve to keep each part.
+    #[must_use]
+    pub fn primitive_bboxes(&self) -> Vec<Aabb> {
+        let mut boxes = vec![Aabb::EMPTY; self.program.leaves.len()];
+        self.program.walk_bounds(|i, bound, _| {
+            if let Instr::Leaf(l) = self.program.instrs[i] {
+                boxes[l as usize] = bound.bbox;
+            }
+        });
+        boxes
     }
 
     /// Number of primitives (leaves) in the scene.
