@@ -1364,7 +1364,7 @@ fn a_thin_part_beside_a_big_one_is_named_with_a_cell_that_keeps_it() {
     )
     .unwrap();
     let out = dir.path("box-and-plate.obj");
-    let run = bspcsg(&[
+    let run = bspcsg([
         "export".as_ref(),
         scene.as_os_str(),
         "--via".as_ref(),
