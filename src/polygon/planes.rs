@@ -1,0 +1,113 @@
+//! Planes known beside a polygon's own: the meet of three planes, computed the same by every
+//! polygon that needs it, and the planes of the neighbours across a polygon's edges.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use crate::geom::Plane;
+use crate::hash::{KeyedHashMap, key};
+
+use super::{Polygon, UNKNOWN};
+
+/// The point where three planes meet, the same bits whichever order they come in and whichever
+/// way they face: `None` where they do not meet in one point.
+///
+/// Of the three, the two closest to parallel give a line (the one whose position is least
+/// certain: a rounding error over their angle), which the third cuts. Every point on the line
+/// where two nearly coincident faces cross is so computed from one and the same line, so all of
+/// them, from either operand, lie on it; cut at the third plane, each is as certain as that
+/// plane's angle to the line allows.
+pub(crate) fn meet(p: &Plane, q: &Plane, r: &Plane) -> Option<DVec3> {
+    let mut planes = [canonical(p), canonical(q), canonical(r)];
+    planes.sort_by_key(plane_bits);
+    let pairs = [(0, 1, 2), (0, 2, 1), (1, 2, 0)];
+    let (i, j, k) = pairs
+        .into_iter()
+        .min_by(|&(i, j, _), &(x, y, _)| {
+            let s = planes[i].normal.cross(planes[j].normal).length_squared();
+            let t = planes[x].normal.cross(planes[y].normal).length_squared();
+            s.total_cmp(&t)
+        })
+        .expect("three pairs");
+    let (pi, pj, pk) = (&planes[i], &planes[j], &planes[k]);
+    let d = pi.normal.cross(pj.normal);
+    let dd = d.length_squared();
+    if dd == 0.0 || !dd.is_finite() {
+        return None;
+    }
+    // From `pi`'s anchor: the point of the line nearest it, then along the line to `pk`.
+    let o = pi.anchor;
+    let h = pj.normal.dot(pj.anchor - o);
+    let on_line = o + d.cross(pi.normal) * (h / dd);
+    let slope = pk.normal.dot(d);
+    if slope == 0.0 {
+        return None;
+    }
+    let t = pk.normal.dot(pk.anchor - on_line) / slope;
+    let x = on_line + d * t;
+    x.is_finite().then_some(x)
+}
+
+/// The plane facing the way whose normal's first non-zero component is positive.
+fn canonical(p: &Plane) -> Plane {
+    let n = p.normal;
+    let first = if n.x != 0.0 {
+        n.x
+    } else if n.y != 0.0 {
+        n.y
+    } else {
+        n.z
+    };
+    if first < 0.0 { p.flipped() } else { *p }
+}
+
+fn plane_bits(p: &Plane) -> [u64; 6] {
+    [
+        p.normal.x.to_bits(),
+        p.normal.y.to_bits(),
+        p.normal.z.to_bits(),
+        p.anchor.x.to_bits(),
+        p.anchor.y.to_bits(),
+        p.anchor.z.to_bits(),
+    ]
+}
+
+/// Gives every edge of `polygons` whose plane is not known the plane of the polygon across it
+/// (the one holding the same edge the other way, same ends bit for bit). Edges with no such
+/// neighbour stay unknown, and are cut by interpolation.
+pub(crate) fn attach_edge_planes(polygons: &mut [Polygon]) {
+    let known =
+        |p: &Polygon| !p.edges().is_empty() && p.edges().iter().all(|e| e.normal != DVec3::ZERO);
+    if polygons.iter().all(known) {
+        return;
+    }
+    let corners = polygons.iter().map(|p| p.vertices.len()).sum();
+    let mut owner: KeyedHashMap<([u64; 3], [u64; 3]), u32> =
+        KeyedHashMap::with_capacity_and_hasher(corners, Default::default());
+    for (i, p) in polygons.iter().enumerate() {
+        let v = &p.vertices;
+        for k in 0..v.len() {
+            owner.insert((key(v[k]), key(v[(k + 1) % v.len()])), i as u32);
+        }
+    }
+    let mut found: Vec<(usize, Arc<[Plane]>)> = Vec::new();
+    for (i, p) in polygons.iter().enumerate() {
+        if known(p) {
+            continue;
+        }
+        let v = &p.vertices;
+        let edges = (0..v.len())
+            .map(|k| match p.edge_plane(k) {
+                Some(e) => *e,
+                None => owner
+                    .get(&(key(v[(k + 1) % v.len()]), key(v[k])))
+                    .map_or(UNKNOWN, |&j| polygons[j as usize].plane),
+            })
+            .collect();
+        found.push((i, edges));
+    }
+    for (i, edges) in found {
+        polygons[i].edges = Some(edges);
+    }
+}
