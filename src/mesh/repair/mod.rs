@@ -20,6 +20,7 @@
 //!    manifold shells ([`shells`]).
 
 mod cracks;
+mod edges;
 mod regions;
 mod shells;
 mod tjunction;

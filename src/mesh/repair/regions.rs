@@ -5,6 +5,7 @@ use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::Ring;
+use super::edges::{sort_by_edge, undirected};
 use crate::geom::is_zero_area;
 use crate::geom::triangulate::{ear_clip_boundary, triangulate_boundary};
 use crate::polygon::Polygon;
@@ -100,7 +101,7 @@ pub(super) fn triangulate_regions(
 /// carry it across a gentle fold. Smaller groups join larger ones, each of their vertices
 /// checked once per join, so `O(n log n)` vertex checks in all.
 fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) -> Vec<Region> {
-    let partner = edge_partners(rings);
+    let partner = edge_partners(rings, positions.len());
     let plane_of = |r: u32| polygons[rings[r as usize].polygon as usize].plane();
     let source_of = |r: u32| polygons[rings[r as usize].polygon as usize].source();
     // group[r]: the group ring r belongs to; members[g]: its rings, the first giving the plane.
@@ -160,18 +161,20 @@ fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) 
 /// For each ring edge, in ring order and edge order, the ring across it when exactly one ring
 /// uses the edge each way (`u32::MAX` otherwise). One sort of the half-edges by undirected
 /// edge, not a hash map of edge uses: a boolean's soup has 10⁵ of them.
-fn edge_partners(rings: &[Ring]) -> Vec<u32> {
+fn edge_partners(rings: &[Ring], vertex_count: usize) -> Vec<u32> {
     // (undirected edge, half-edge index << 1 | reversed): sorting puts each edge's uses together.
     let mut keyed: Vec<(u64, u32)> = Vec::with_capacity(rings.len() * 4);
     let mut owner: Vec<u32> = Vec::with_capacity(rings.len() * 4);
     for (r, ring) in rings.iter().enumerate() {
         for (a, b) in ring_edges(&ring.verts) {
-            let undirected = ((a.min(b) as u64) << 32) | a.max(b) as u64;
-            keyed.push((undirected, (owner.len() as u32) << 1 | u32::from(a > b)));
+            keyed.push((
+                undirected(a, b),
+                (owner.len() as u32) << 1 | u32::from(a > b),
+            ));
             owner.push(r as u32);
         }
     }
-    keyed.sort_unstable();
+    sort_by_edge(&mut keyed, vertex_count);
     let mut partner = vec![u32::MAX; owner.len()];
     let mut i = 0;
     while i < keyed.len() {
@@ -218,11 +221,10 @@ fn boundary(rings: &[Ring], members: &[u32]) -> Vec<(u32, u32)> {
         .iter()
         .flat_map(|&m| ring_edges(&rings[m as usize].verts))
         .collect();
-    let undirected = |(a, b): (u32, u32)| ((a.min(b) as u64) << 32) | a.max(b) as u64;
     // (edge, uses a→b minus uses b→a, a < b).
     let mut count: Vec<(u64, i32)> = edges
         .iter()
-        .map(|&(a, b)| (undirected((a, b)), if a < b { 1 } else { -1 }))
+        .map(|&(a, b)| (undirected(a, b), if a < b { 1 } else { -1 }))
         .collect();
     count.sort_unstable_by_key(|c| c.0);
     count.dedup_by(|later, kept| {
@@ -239,7 +241,7 @@ fn boundary(rings: &[Ring], members: &[u32]) -> Vec<(u32, u32)> {
     let mut out = Vec::with_capacity(edges.len());
     for (a, b) in edges {
         let k = count
-            .binary_search_by_key(&undirected((a, b)), |c| c.0)
+            .binary_search_by_key(&undirected(a, b), |c| c.0)
             .expect("counted above");
         let c = &mut count[k].1;
         // Emit each surplus use once, in its own direction.

@@ -2,6 +2,7 @@
 
 use glam::DVec3;
 
+use super::edges::{sort_by_edge, undirected};
 use crate::disjoint_sets::DisjointSets;
 use crate::mesh::Mesh;
 
@@ -31,12 +32,9 @@ pub(super) fn split_into_shells(
     let to = |h: usize| triangles[h / 3][(h % 3 + 1) % 3];
     // Half-edges sorted by their undirected edge, as (min << 32 | max, half-edge).
     let mut keyed: Vec<(u64, u32)> = (0..n)
-        .map(|h| {
-            let (a, b) = (from(h), to(h));
-            (((a.min(b) as u64) << 32) | a.max(b) as u64, h as u32)
-        })
+        .map(|h| (undirected(from(h), to(h)), h as u32))
         .collect();
-    keyed.sort_unstable();
+    sort_by_edge(&mut keyed, positions.len());
     let order: Vec<u32> = keyed.iter().map(|&(_, h)| h).collect();
     let mut twin: Vec<u32> = vec![u32::MAX; n];
     // Edges used by more than two triangles, each as its half-edges sorted by angle.

@@ -5,6 +5,7 @@ use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::Ring;
+use super::edges::{sort_by_edge, undirected};
 use crate::geom::Aabb;
 use crate::geom::bvh::Bvh;
 use crate::mesh::weld::Wide;
@@ -31,7 +32,7 @@ pub(super) fn insert_on_edges(
         total += ring.verts.len();
     }
     let matched = if skip_matched {
-        reversed_edges(rings, total)
+        reversed_edges(rings, total, positions.len())
     } else {
         vec![false; total]
     };
@@ -122,18 +123,20 @@ pub(super) fn insert_on_edges(
 
 /// For each ring edge (rings in order, edges in ring order), whether some ring uses it the
 /// other way: one sort of the half-edges by undirected edge rather than a hash set of them.
-fn reversed_edges(rings: &[Ring], total: usize) -> Vec<bool> {
+fn reversed_edges(rings: &[Ring], total: usize, vertex_count: usize) -> Vec<bool> {
     // (undirected edge, half-edge index << 1 | runs from the larger index to the smaller).
     let mut keyed: Vec<(u64, u32)> = Vec::with_capacity(total);
     for ring in rings {
         let n = ring.verts.len();
         for k in 0..n {
             let (a, b) = (ring.verts[k], ring.verts[(k + 1) % n]);
-            let undirected = ((a.min(b) as u64) << 32) | a.max(b) as u64;
-            keyed.push((undirected, (keyed.len() as u32) << 1 | u32::from(a > b)));
+            keyed.push((
+                undirected(a, b),
+                (keyed.len() as u32) << 1 | u32::from(a > b),
+            ));
         }
     }
-    keyed.sort_unstable();
+    sort_by_edge(&mut keyed, vertex_count);
     let mut matched = vec![false; total];
     let mut i = 0;
     while i < keyed.len() {
