@@ -155,10 +155,12 @@ fn repair(
     quick: bool,
     fill_flat: Option<f64>,
 ) -> (Mesh, Vec<DVec3>) {
-    let corners: Vec<DVec3> = polygons
-        .iter()
-        .flat_map(|p| p.vertices().iter().copied())
-        .collect();
+    // Sized first: collecting a flat map grows the list by copying (10⁶ corners).
+    let mut corners: Vec<DVec3> =
+        Vec::with_capacity(polygons.iter().map(|p| p.vertices().len()).sum());
+    for p in polygons {
+        corners.extend_from_slice(p.vertices());
+    }
     let (positions, map) = weld_within(&corners, delta, wide);
     let mut rings = Vec::with_capacity(polygons.len());
     let mut at = 0usize;

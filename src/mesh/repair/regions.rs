@@ -217,10 +217,11 @@ fn ring_edges(v: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {
 /// Most regions are a ring or two: the uses are counted in a sorted list, not a hash map, so a
 /// region costs no allocation beyond its edges.
 fn boundary(rings: &[Ring], members: &[u32]) -> Vec<(u32, u32)> {
-    let edges: Vec<(u32, u32)> = members
-        .iter()
-        .flat_map(|&m| ring_edges(&rings[m as usize].verts))
-        .collect();
+    let total = members.iter().map(|&m| rings[m as usize].verts.len()).sum();
+    let mut edges: Vec<(u32, u32)> = Vec::with_capacity(total);
+    for &m in members {
+        edges.extend(ring_edges(&rings[m as usize].verts));
+    }
     // (edge, uses a→b minus uses b→a, a < b).
     let mut count: Vec<(u64, i32)> = edges
         .iter()
@@ -277,8 +278,10 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], pinned: &[b
     }
     // Indexed by vertex: every boundary vertex is a welded position, and a table over all of
     // them is cheaper than hashing each edge end.
-    let mut outgoing: Vec<SmallVec<[u32; 2]>> = vec![SmallVec::new(); positions.len()];
-    let mut incoming: Vec<SmallVec<[u32; 2]>> = vec![SmallVec::new(); positions.len()];
+    // Four inline: a vertex where four regions meet (a quad mesh's) needs no allocation, and the
+    // list is no larger than one of two.
+    let mut outgoing: Vec<SmallVec<[u32; 4]>> = vec![SmallVec::new(); positions.len()];
+    let mut incoming: Vec<SmallVec<[u32; 4]>> = vec![SmallVec::new(); positions.len()];
     for (i, e) in edges.iter().enumerate() {
         outgoing[e.a as usize].push(i as u32);
         incoming[e.b as usize].push(i as u32);
