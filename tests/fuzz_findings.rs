@@ -320,3 +320,17 @@ fn scene_with_a_hole_thinner_than_rounding() {
         other => panic!("want beyond precision, got {other:?}"),
     }
 }
+
+/// Found by a second 10-minute run of the `scenes` target (libFuzzer seed 2, artifact
+/// crash-73f3fb0b…, at about 545 s), minimised to four operands (`bsp_6`): the baked smooth
+/// union of the example bracket's plate and boss, minus a bore, a union of two mounting holes
+/// (one of radius 5.2, wider than the plate) and a slot turned by (8°, 45°, 1°). The coarse
+/// BSP route leaves 3 boundary edges: a crack among the booleans of the bake's triangles, each
+/// operand needed. Open (in the kernel's repair of cut triangle soups, not in the scene code).
+#[test]
+#[ignore = "open: 3 boundary edges where a coarse bake meets four cuts"]
+fn scene_bsp_route_crack_where_a_bake_meets_four_cuts() {
+    if let Err(e) = scene_check::check_bsp_route(&finding_scene("bsp_6")) {
+        panic!("bsp_6: {e}");
+    }
+}
