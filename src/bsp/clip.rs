@@ -96,86 +96,75 @@ impl Tree {
             coplanar: false,
             side: DVec3::ZERO,
         });
-        while let Some(w) = stack.pop() {
-            let i = match w.link {
-                Link::Leaf(label) => {
-                    if label == keep {
+        // One fragment is followed down in place while it stays whole; a cut leaves its back
+        // piece on the stack. Popping and pushing a fragment at every node copied ~300 bytes
+        // twice per step (a third of all copying on real models); the order is the same.
+        while let Some(mut w) = stack.pop() {
+            loop {
+                let i = match w.link {
+                    Link::Leaf(label) => {
+                        if label == keep {
+                            out.push(Clipped {
+                                polygon: w.polygon,
+                                coplanar: w.coplanar,
+                            });
+                        }
+                        break;
+                    }
+                    Link::Node(i) => i,
+                };
+                let node = &self.nodes[i as usize];
+                let is_face = matches!(node.kind, Kind::Face { .. });
+                // No surface below this node comes near the fragment: it lies in one region.
+                // Or a cell plane, axis-aligned, that the fragment's box spans with no surface
+                // near: only the cell's box came near, so classify whole rather than cut for
+                // nothing.
+                let whole = !w.bbox.overlaps(&node.content, margin)
+                    || matches!(node.kind, Kind::Stub)
+                    || (!is_face
+                        && spans_axis_plane(&w.bbox, &node.plane, eps)
+                        && !self.near_surface(w.link, &w.bbox, margin));
+                if whole {
+                    if self.label_whole(&w, surface) == keep {
                         out.push(Clipped {
                             polygon: w.polygon,
                             coplanar: w.coplanar,
                         });
                     }
-                    continue;
+                    break;
                 }
-                Link::Node(i) => i,
-            };
-            let node = &self.nodes[i as usize];
-            if !w.bbox.overlaps(&node.content, margin) || matches!(node.kind, Kind::Stub) {
-                // No surface below this node comes near the fragment: it lies in one region.
-                if self.label_whole(&w, surface) == keep {
-                    out.push(Clipped {
-                        polygon: w.polygon,
-                        coplanar: w.coplanar,
-                    });
-                }
-                continue;
-            }
-            let is_face = matches!(node.kind, Kind::Face { .. });
-            // A cell plane is axis-aligned: the fragment's box tells whether it spans the plane,
-            // and a spanning fragment with no surface near is classified whole, uncut.
-            if !is_face
-                && spans_axis_plane(&w.bbox, &node.plane, eps)
-                && !self.near_surface(w.link, &w.bbox, margin)
-            {
-                // Only the cell's box came near: classify whole rather than cut for nothing.
-                if self.label_whole(&w, surface) == keep {
-                    out.push(Clipped {
-                        polygon: w.polygon,
-                        coplanar: w.coplanar,
-                    });
-                }
-                continue;
-            }
-            match w.polygon.split(&node.plane, eps) {
-                Split::Front => stack.push(Work {
-                    link: node.front,
-                    ..w
-                }),
-                Split::Back => stack.push(Work {
-                    link: node.back,
-                    ..w
-                }),
-                Split::Coplanar => {
-                    let same = w.polygon.plane().normal.dot(node.plane.normal) > 0.0;
-                    // A cell plane carries no polygon, so either side sees the same surface.
-                    let to_front = if is_face {
-                        same == (rule == Coplanar::SameFront)
-                    } else {
-                        same
-                    };
-                    let side = if !is_face {
-                        w.side
-                    } else if to_front {
-                        node.plane.normal
-                    } else {
-                        -node.plane.normal
-                    };
-                    stack.push(Work {
-                        link: if to_front { node.front } else { node.back },
-                        coplanar: w.coplanar || is_face,
-                        side,
-                        ..w
-                    });
-                }
-                Split::Spanning { front, back } => {
-                    for (piece, link) in [(back, node.back), (front, node.front)] {
+                match w.polygon.split(&node.plane, eps) {
+                    Split::Front => w.link = node.front,
+                    Split::Back => w.link = node.back,
+                    Split::Coplanar => {
+                        let same = w.polygon.plane().normal.dot(node.plane.normal) > 0.0;
+                        // A cell plane carries no polygon, so either side sees the same surface.
+                        let to_front = if is_face {
+                            same == (rule == Coplanar::SameFront)
+                        } else {
+                            same
+                        };
+                        if is_face {
+                            w.side = if to_front {
+                                node.plane.normal
+                            } else {
+                                -node.plane.normal
+                            };
+                        }
+                        w.link = if to_front { node.front } else { node.back };
+                        w.coplanar |= is_face;
+                    }
+                    Split::Spanning { front, back } => {
                         stack.push(Work {
-                            bbox: piece.bbox(),
-                            polygon: piece,
-                            link,
+                            bbox: back.bbox(),
+                            polygon: back,
+                            link: node.back,
                             coplanar: w.coplanar,
                             side: w.side,
                         });
+                        w.bbox = front.bbox();
+                        w.polygon = front;
+                        w.link = node.front;
                     }
                 }
             }

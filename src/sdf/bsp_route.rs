@@ -12,7 +12,8 @@ use super::shapes::Shape;
 use super::shapes2d::{Prim2, Shape2};
 use super::tree::{Frame, NodeId, NodeKind};
 use crate::error::{Error, Result};
-use crate::geom::Aabb;
+use crate::geom::{Aabb, Tolerance};
+use crate::mesh::repair::WELD_TOLERANCES;
 use crate::polygon::Polygon;
 use crate::primitives::{MIN_SEGMENTS, segments_for_tolerance};
 use crate::sketch::{ExtrudeOptions, Sketch, TWIST_DEGREES_PER_SLICE};
@@ -337,7 +338,10 @@ impl Ctx<'_> {
                         NodeKind::Leaf { shape, material } => {
                             let frame = parent.child(&node.transform);
                             let local = self.tessellate(shape, &frame)?;
-                            done.push(local.transform(frame.to_world)?.with_source(*material));
+                            let local_box = local.bbox();
+                            let world = local.transform(frame.to_world)?;
+                            check_thickness(&local_box, &world, &frame)?;
+                            done.push(world.with_source(*material));
                         }
                     }
                 }
@@ -468,6 +472,29 @@ impl Ctx<'_> {
             }
         }
     }
+}
+
+/// Refuses a primitive thinner, where it lies, than twice the distance at which the kernel
+/// welds points (`WELD_TOLERANCES` tolerances of the floor its coordinates set): its opposite
+/// faces would round onto each other (a cylinder of radius 10⁻¹⁰³ at x = 1.5 becomes a segment
+/// of flat polygons, and cutting it left 8 boundary edges). Its thinnest extent is its local
+/// box's thinnest side times the frame's least stretch.
+fn check_thickness(lb: &Aabb, world: &Solid, frame: &Frame) -> Result<()> {
+    let wb = world.bbox();
+    if lb.is_empty() || wb.is_empty() {
+        return Ok(());
+    }
+    let thinnest = (lb.max - lb.min).min_element() * frame.sigma;
+    let magnitude = wb.max_abs();
+    let eps = Tolerance::floor(magnitude);
+    if thinnest > 2.0 * WELD_TOLERANCES * eps {
+        return Ok(());
+    }
+    Err(Error::BeyondPrecision {
+        region: thinnest,
+        magnitude,
+        eps,
+    })
 }
 
 fn combine(op: BoolOp, children: Vec<Solid>) -> Solid {
