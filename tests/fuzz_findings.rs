@@ -325,12 +325,20 @@ fn scene_with_a_hole_thinner_than_rounding() {
 /// crash-73f3fb0b…, at about 545 s), minimised to four operands (`bsp_6`): the baked smooth
 /// union of the example bracket's plate and boss, minus a bore, a union of two mounting holes
 /// (one of radius 5.2, wider than the plate) and a slot turned by (8°, 45°, 1°). The coarse
-/// BSP route leaves 3 boundary edges: a crack among the booleans of the bake's triangles, each
-/// operand needed. Open (in the kernel's repair of cut triangle soups, not in the scene code).
+/// BSP route leaves 3 boundary edges, a slit of zero width on the plane y = 1: vertex
+/// (−0.67355, 1, 0.38405) lies 1.15e-10 off the edge from (−0.67898, 1, 0.37351) to
+/// (−0.61627, 1, 0.49512), 3.6 weld distances at the boolean's tolerance 4.0e-12, and no repair
+/// pass splits the edge there. The solid's polygons bound the right volume (0.53204365322 by
+/// both the solid and its fan mesh). A third run (seed 3, artifact crash-e5c509be…, after
+/// 289,404 executions) found the same kind (`bsp_7`, another bracket variant): a slit of three
+/// collinear vertices on y = 1, the mounting holes' top plane again. Open: the T-junction
+/// search of `mesh/repair/`.
 #[test]
 #[ignore = "open: 3 boundary edges where a coarse bake meets four cuts"]
 fn scene_bsp_route_crack_where_a_bake_meets_four_cuts() {
-    if let Err(e) = scene_check::check_bsp_route(&finding_scene("bsp_6")) {
-        panic!("bsp_6: {e}");
+    for name in ["bsp_6", "bsp_7"] {
+        if let Err(e) = scene_check::check_bsp_route(&finding_scene(name)) {
+            panic!("{name}: {e}");
+        }
     }
 }
