@@ -206,11 +206,12 @@ fn repair(
     }
     tjunction::insert_on_edges(&positions, &mut rings, delta, wide, quick);
     let mut triangles = regions::triangulate_regions(&positions, &rings, polygons, delta);
+    let filled_from = triangles.0.len();
     if let Some(flat) = fill_flat {
         cracks::close_flat_cracks(&positions, &mut triangles, flat);
     }
     let (mut mesh, cracks) = shells::split_into_shells(positions, triangles);
-    thin::drop_thin_shells(&mut mesh, delta);
+    thin::drop_thin_shells(&mut mesh, delta, filled_from);
     (mesh, cracks)
 }
 

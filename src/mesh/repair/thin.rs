@@ -19,7 +19,11 @@ use crate::mesh::Mesh;
 /// Removes every closed shell (every edge used both ways within it) whose mean thickness,
 /// twice its volume over its area, is at most `delta`; returns how many were removed. Shells
 /// are told apart by shared vertices, as `split_into_shells` leaves them.
-pub(super) fn drop_thin_shells(mesh: &mut Mesh, delta: f64) -> usize {
+///
+/// A shell holding a triangle from `filled_from` on (those the flat fill of `cracks` added) is
+/// kept: the fill closes any flat open loop, a lone face too, against itself, and dropping
+/// that would turn an open result into an empty one that passes every check.
+pub(super) fn drop_thin_shells(mesh: &mut Mesh, delta: f64, filled_from: usize) -> usize {
     let n = mesh.positions.len();
     if mesh.triangles.is_empty() {
         return 0;
@@ -44,17 +48,19 @@ pub(super) fn drop_thin_shells(mesh: &mut Mesh, delta: f64) -> usize {
         .iter()
         .map(|t| sets.find(t[0] as usize))
         .collect();
-    for (t, &r) in mesh.triangles.iter().zip(&root) {
+    let mut filled = vec![false; n];
+    for (i, (t, &r)) in mesh.triangles.iter().zip(&root).enumerate() {
         let o = mesh.positions[r];
         let [a, b, c] = t.map(|i| mesh.positions[i as usize] - o);
         volume[r] += a.dot(b.cross(c));
-        area[r] += (b - a).cross(c - a).length();
+        area[r] += length((b - a).cross(c - a));
+        filled[r] |= i >= filled_from;
         open[r] |= [(t[1], t[0]), (t[2], t[1]), (t[0], t[2])]
             .iter()
             .any(|e| !edges.contains(e));
     }
     // Mean thickness 2V / A = (6V / 3) / (2A / 2) = (2/3)·(6V) / (2A).
-    let thin = |r: usize| !open[r] && 2.0 * volume[r].abs() / 3.0 <= delta * area[r];
+    let thin = |r: usize| !open[r] && !filled[r] && 2.0 * volume[r].abs() / 3.0 <= delta * area[r];
     let keep: Vec<bool> = root.iter().map(|&r| !thin(r)).collect();
     let mut counted = vec![false; n];
     let mut dropped = 0;
@@ -91,4 +97,11 @@ pub(super) fn drop_thin_shells(mesh: &mut Mesh, delta: f64) -> usize {
         sources,
     };
     dropped
+}
+
+/// The length of `v` without squaring its components: a cross product of edges 1e99 long is
+/// 1e198, whose square overflows (and an infinite area would make any shell thin).
+fn length(v: DVec3) -> f64 {
+    let m = v.abs().max_element();
+    if m == 0.0 { 0.0 } else { m * (v / m).length() }
 }
