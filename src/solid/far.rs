@@ -150,9 +150,10 @@ fn mergeable(p: &Polygon, q: &Polygon, flat: f64) -> bool {
         && (within(p, q) || within(q, p))
 }
 
-/// The boolean's output: both operands' cores, their rims, then the rest (far polygons of an
-/// operand not indexed, and the clipped ones), B's polygons flipped with `flip_b`; with the
-/// index of the first two parts, if any.
+/// The boolean's output: both operands' cores, then A's rim and the rest of A (far polygons of
+/// an operand not indexed, and the clipped ones), then B's likewise (the order the polygons had
+/// before the cores were taken out), B's polygons flipped with `flip_b`; with the index of the
+/// cores and rims, if any.
 pub(super) fn assemble(
     (mut a, a_rest): (Far, Vec<Polygon>),
     (mut b, b_rest): (Far, Vec<Polygon>),
@@ -164,10 +165,10 @@ pub(super) fn assemble(
     let offset = a.vertex_count;
     let [a_core, a_rim, a_plain] = a.parts();
     let [b_core, b_rim, b_plain] = b.parts();
+    let (a_split, b_split) = (corner_count(&a_core), corner_count(&b_core));
     let mut polygons = Vec::with_capacity(total);
     let mut ids = Vec::with_capacity(a.ids.len() + b.ids.len());
-    let a_split = corner_count(&a_core);
-    let b_split = corner_count(&b_core);
+    let mut rim = Vec::with_capacity(a_rim.len() + b_rim.len());
     // B's polygons with their ids past A's, both reversed when B is flipped.
     let push_b = |polygons: &mut Vec<Polygon>, ids: &mut Vec<u32>, part: Vec<Polygon>, at| {
         let mut at = at;
@@ -187,11 +188,13 @@ pub(super) fn assemble(
     polygons.extend(a_core);
     ids.extend_from_slice(&a.ids[..a_split]);
     push_b(&mut polygons, &mut ids, b_core, 0);
+    rim.extend(polygons.len() as u32..(polygons.len() + a_rim.len()) as u32);
     polygons.extend(a_rim);
     ids.extend_from_slice(&a.ids[a_split..]);
-    push_b(&mut polygons, &mut ids, b_rim, b_split);
     polygons.extend(a_plain);
     polygons.extend(a_rest);
+    rim.extend(polygons.len() as u32..(polygons.len() + b_rim.len()) as u32);
+    push_b(&mut polygons, &mut ids, b_rim, b_split);
     for mut p in b_plain.into_iter().chain(b_rest) {
         if flip_b {
             p.flip();
@@ -200,6 +203,7 @@ pub(super) fn assemble(
     }
     let index = (core > 0).then_some(Indexed {
         core,
+        rim,
         ids,
         vertex_count,
     });

@@ -11,21 +11,22 @@ use crate::mesh::Mesh;
 use crate::mesh::weld::{Wide, weld_within};
 use crate::polygon::{Polygon, dedup_ring};
 
-/// What a boolean knows of its output's topology: the polygons it passed through whole, in
-/// front of the others, with one vertex id per corner (equal ids are equal positions, bit for
-/// bit).
+/// What a boolean knows of its output's topology: the polygons it passed through whole, with
+/// one vertex id per corner (equal ids are equal positions, bit for bit).
 ///
 /// - `polygons[..core]`: the **core**. Every vertex of a core polygon is surrounded only by
 ///   polygons passed through whole (so every edge is matched by the input's own neighbour),
 ///   none of them coplanar with a neighbour of its source (so no region would merge them).
 ///   Each is emitted as its fan, without welding, T-junction search or regrouping.
-/// - `polygons[core..]`, as far as `ids` reaches: the **rim**, passed through whole but touching the cut
+/// - `polygons[i]` for `i` in `rim`: the **rim**, passed through whole but touching the cut
 ///   region or a flat area; repaired with the cut polygons. Their ids tie the core's vertices
 ///   to the welded ones.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Indexed {
     pub core: usize,
-    /// The corners' vertex ids of `polygons[..core + rim]`, in order.
+    /// The rim polygons' indices, ascending (all at or past `core`).
+    pub rim: Vec<u32>,
+    /// The corners' vertex ids of the core polygons, then of the rim polygons, in order.
     pub ids: Vec<u32>,
     /// One more than the largest id.
     pub vertex_count: u32,
@@ -41,7 +42,10 @@ pub(super) fn repair(
 ) -> Option<(Mesh, Vec<DVec3>)> {
     let rest = &polygons[index.core..];
     let mut corners: Vec<DVec3> = Vec::with_capacity(rest.iter().map(|p| p.vertices().len()).sum());
+    // Where each polygon's corners start in `corners`, counted from the core's end.
+    let mut first_corner: Vec<u32> = Vec::with_capacity(rest.len());
     for p in rest {
+        first_corner.push(corners.len() as u32);
         corners.extend_from_slice(p.vertices());
     }
     let wide = Wide::default();
@@ -52,8 +56,13 @@ pub(super) fn repair(
         .sum();
     // The welded vertex of each id the rim uses; the core's own vertices come after them.
     let mut vertex_of = vec![u32::MAX; index.vertex_count as usize];
-    for (&id, &v) in index.ids[core_corners..].iter().zip(&map) {
-        vertex_of[id as usize] = v;
+    let mut rim_ids = index.ids[core_corners..].iter();
+    for &r in &index.rim {
+        let at = first_corner[r as usize - index.core] as usize;
+        let n = polygons[r as usize].vertices().len();
+        for (&id, &v) in rim_ids.by_ref().take(n).zip(&map[at..at + n]) {
+            vertex_of[id as usize] = v;
+        }
     }
     let mut pinned = vec![false; positions.len()];
     let mut own = 0usize;
