@@ -14,8 +14,9 @@
 //!   `abc`: the surface moves by at most that height. Taken when `v` is far from both ends of
 //!   `ab` (a *cap*).
 //! * **Collapse** the needle's shortest edge `pq`, moving `p` onto `q` and deleting the two
-//!   triangles beside it. The surface moves by at most `|pq|`. Taken when the needle has a
-//!   short edge (a *spike* or a speck).
+//!   triangles beside it; where that would change the volume, `q` moves off its place along
+//!   the fan's normal by what puts it back (a collapse keeps the volume). The surface moves by
+//!   about `|pq|`. Taken when the needle has a short edge (a *spike* or a speck).
 //!
 //! Neither is taken where it would change topology or fold the surface: a flip needs the new
 //! edge not to exist already; a collapse needs the link condition (the two ends share exactly
@@ -225,7 +226,13 @@ impl Work {
         };
         match best?.1 {
             Op::Flip { t, u, new_t, new_u } => Some(self.apply_flip(t, u, new_t, new_u)),
-            Op::Collapse { from, to, t1, t2 } => Some(self.apply_collapse(from, to, t1, t2)),
+            Op::Collapse {
+                from,
+                to,
+                at,
+                t1,
+                t2,
+            } => Some(self.apply_collapse(from, to, at, t1, t2)),
         }
     }
 
@@ -274,11 +281,20 @@ impl Work {
     }
 
     /// Collapsing edge `from`–`to` of triangle `t` by moving `from` onto `to`: the move and the
-    /// operation, if the topology allows it and every triangle around `from` stays acceptable.
+    /// operation, if the topology allows it and every triangle around both ends stays
+    /// acceptable.
     ///
-    /// The move is measured both ways: how far `to` lies from the plane of each triangle around
-    /// `from` as it was, and `from` from each as it becomes. Sliding a vertex along a flat
-    /// region or a straight crease moves nothing, however long the edge.
+    /// The merged vertex keeps the volume: where moving `from` onto `to` would add or cut
+    /// some (the fan around `from` is not flat), it goes to the point off `to` along the merged
+    /// fan's area-weighted normal that puts it back. Specks fanned over a face where a sphere
+    /// grazes a box's corner cut volume at each collapse, all of one sign, whichever end was
+    /// kept (6.8·10⁻⁹ over eleven collapses); the offsets are at most 6·10⁻⁸ there. Where the fan around
+    /// `from` is flat, nothing moves off it.
+    ///
+    /// The move is measured both ways: how far the merged vertex lies from the plane of each
+    /// triangle around either end as it was, and each old end from each triangle as it
+    /// becomes. Sliding a vertex along a flat region or a straight crease moves nothing,
+    /// however long the edge.
     fn plan_collapse(&self, t: u32, from: u32, to: u32) -> Option<Plan> {
         if self.shell_tris[self.shell[from as usize] as usize] <= 4 {
             return None;
@@ -306,35 +322,69 @@ impl Work {
             return None;
         }
         let (source, target) = (self.positions[from as usize], self.positions[to as usize]);
+        // The volume is linear in a vertex's position: moving `from` by `m` changes it by
+        // (area-weighted normal of its fan) · m / 6, `t1` and `t2` flattening to nothing.
+        let fan = |v: u32| {
+            self.around[v as usize]
+                .iter()
+                .copied()
+                .filter(move |&u| u != t1 && u != t2)
+        };
+        let moved = |old: [u32; 3]| old.map(|w| if w == from { to } else { w });
+        let mut change = 0.0;
+        for &u in &self.around[from as usize] {
+            change += twice_normal(self.corners(self.tris[u as usize])).dot(target - source) / 6.0;
+        }
+        let mut gradient = DVec3::ZERO;
+        for u in fan(from).chain(fan(to)) {
+            gradient += twice_normal(self.corners(moved(self.tris[u as usize])));
+        }
+        let at = match (6.0 * change / gradient.length_squared()) * gradient {
+            fix if fix.is_finite() && change != 0.0 => target - fix,
+            _ => target,
+        };
+        let corners = |tri: [u32; 3]| {
+            tri.map(|w| {
+                if w == to {
+                    at
+                } else {
+                    self.positions[w as usize]
+                }
+            })
+        };
         let mut dev: f64 = 0.0;
         let mut swept = 0.0;
-        for &u in &self.around[from as usize] {
-            if u == t1 || u == t2 {
-                continue;
-            }
+        for (u, end) in fan(from).map(|u| (u, source)).chain(fan(to).map(|u| (u, target))) {
             let old = self.tris[u as usize];
-            let new = old.map(|w| if w == from { to } else { w });
+            let new = moved(old);
+            let (before, after) = (self.corners(old), corners(new));
             // A needle's own plane is noise: then only flatness is checked.
-            let needle = area(self.corners(old)) < self.threshold(old);
+            let needle = area(before) < self.threshold(old);
             let reference = if needle {
-                twice_normal(self.corners(new))
+                twice_normal(after)
             } else {
-                twice_normal(self.corners(old))
+                twice_normal(before)
             };
-            if !self.acceptable(new, reference) {
+            if is_zero_area(after) || twice_normal(after).dot(reference) <= 0.0 {
                 return None;
             }
-            swept += (twice_normal(self.corners(old)).dot(target - source) / 6.0).abs();
+            swept += (twice_normal(before).dot(at - end) / 6.0).abs();
             if !needle {
                 dev = dev
-                    .max(plane_distance(self.corners(old), target))
-                    .max(plane_distance(self.corners(new), source));
+                    .max(plane_distance(before, at))
+                    .max(plane_distance(after, end));
             }
         }
         Some(Plan {
             dev,
             swept,
-            op: Op::Collapse { from, to, t1, t2 },
+            op: Op::Collapse {
+                from,
+                to,
+                at,
+                t1,
+                t2,
+            },
         })
     }
 
@@ -356,8 +406,10 @@ impl Work {
         shared == 2 && np.contains(&o1) && np.contains(&o2) && nq.contains(&o1) && nq.contains(&o2)
     }
 
-    /// Moves vertex `from` onto `to`, deleting `t1` and `t2` (the triangles on edge from–to).
-    fn apply_collapse(&mut self, from: u32, to: u32, t1: u32, t2: u32) -> Vec<u32> {
+    /// Moves vertex `from` onto `to`, and that to `at`, deleting `t1` and `t2` (the triangles
+    /// on edge from–to).
+    fn apply_collapse(&mut self, from: u32, to: u32, at: DVec3, t1: u32, t2: u32) -> Vec<u32> {
+        self.positions[to as usize] = at;
         let fan: SmallVec<[u32; 8]> = self.around[from as usize]
             .iter()
             .copied()
@@ -446,9 +498,11 @@ enum Op {
         new_t: [u32; 3],
         new_u: [u32; 3],
     },
+    /// `from` onto `to`, which moves to `at`.
     Collapse {
         from: u32,
         to: u32,
+        at: DVec3,
         t1: u32,
         t2: u32,
     },
