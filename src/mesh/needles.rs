@@ -30,7 +30,6 @@ use smallvec::SmallVec;
 use super::Mesh;
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, MAX_MOVE, NEEDLE_AREA, Tolerance, is_zero_area};
-use crate::hash::FxHashMap;
 
 /// Removes the needles it can from `mesh`, keeping it closed and oriented. Returns how many
 /// needles (by the thresholds used here) remain; 0 also where the mesh is left alone: triangles
@@ -58,19 +57,27 @@ pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
         bbox.grow(p);
     }
     let largest_threshold = NEEDLE_AREA * bbox.diagonal().min(scale).powi(2);
+    // Twice the area, squared, against twice the threshold, squared: no square root per
+    // triangle (this check is all the pass does on most meshes).
+    let bar = (2.0 * largest_threshold).powi(2);
     let corners = |t: &[u32; 3]| t.map(|i| mesh.positions[i as usize]);
     if !mesh
         .triangles
         .iter()
-        .any(|t| area(corners(t)) < largest_threshold)
+        .any(|t| twice_normal(corners(t)).length_squared() < bar)
     {
         return 0;
     }
-    let mut work = Work::new(mesh, scale);
+    let mut work = Work::new(std::mem::take(mesh), scale);
     let mut queue: Vec<u32> = (0..work.tris.len() as u32)
         .filter(|&t| work.is_needle(t))
         .collect();
     if queue.is_empty() {
+        *mesh = Mesh {
+            positions: work.positions,
+            triangles: work.tris,
+            sources: work.sources,
+        };
         return 0;
     }
     // Each operation removes a needle or makes one's smallest area larger; the budget only
@@ -91,15 +98,17 @@ pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
     work.finish(mesh)
 }
 
-/// The mesh being edited: triangles with liveness, directed edges, triangles per vertex and the
-/// scale of each vertex's shell.
+/// The mesh being edited: triangles with liveness, triangles per vertex and the scale of each
+/// vertex's shell.
+///
+/// A directed edge is found among the few triangles around its start ([`Work::with_edge`]),
+/// not in a map of all edges: one needle in a sphere of 10⁶ triangles made the pass hash every
+/// edge (166 ms of 860 in `to_mesh`), for a handful of lookups.
 struct Work {
     positions: Vec<DVec3>,
     tris: Vec<[u32; 3]>,
     sources: Vec<u32>,
     alive: Vec<bool>,
-    /// Directed edge → the triangle that has it.
-    edges: FxHashMap<(u32, u32), u32>,
     /// Live triangles around each vertex.
     around: Vec<SmallVec<[u32; 8]>>,
     /// Per vertex: its shell's index.
@@ -113,7 +122,7 @@ struct Work {
 }
 
 impl Work {
-    fn new(mesh: &Mesh, scale: f64) -> Self {
+    fn new(mesh: Mesh, scale: f64) -> Self {
         let n = mesh.positions.len();
         let mut sets = DisjointSets::new(n);
         for t in &mesh.triangles {
@@ -140,21 +149,17 @@ impl Work {
             shell[v] = shell[sets.find(v)];
         }
         let diag: Vec<f64> = boxes.iter().map(|b| b.diagonal().min(scale)).collect();
-        let mut edges =
-            FxHashMap::with_capacity_and_hasher(mesh.triangles.len() * 3, Default::default());
         let mut around: Vec<SmallVec<[u32; 8]>> = vec![SmallVec::new(); n];
         for (t, tri) in mesh.triangles.iter().enumerate() {
-            for k in 0..3 {
-                edges.insert((tri[k], tri[(k + 1) % 3]), t as u32);
-                around[tri[k] as usize].push(t as u32);
+            for &v in tri {
+                around[v as usize].push(t as u32);
             }
         }
         Work {
-            positions: mesh.positions.clone(),
-            tris: mesh.triangles.clone(),
-            sources: mesh.sources.clone(),
             alive: vec![true; mesh.triangles.len()],
-            edges,
+            positions: mesh.positions,
+            tris: mesh.triangles,
+            sources: mesh.sources,
             around,
             shell,
             needle_area: diag.iter().map(|d| NEEDLE_AREA * d * d).collect(),
@@ -162,6 +167,14 @@ impl Work {
             tolerance: diag.iter().map(|d| Tolerance::RELATIVE * d).collect(),
             shell_tris,
         }
+    }
+
+    /// The live triangle with directed edge `a`→`b`, if any.
+    fn with_edge(&self, a: u32, b: u32) -> Option<u32> {
+        self.around[a as usize].iter().copied().find(|&t| {
+            let tri = self.tris[t as usize];
+            (0..3).any(|k| tri[k] == a && tri[(k + 1) % 3] == b)
+        })
     }
 
     fn corners(&self, tri: [u32; 3]) -> [DVec3; 3] {
@@ -241,11 +254,11 @@ impl Work {
     fn plan_flip(&self, t: u32, k: usize) -> Option<Plan> {
         let tri = self.tris[t as usize];
         let (a, b, v) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
-        let &u = self.edges.get(&(b, a))?;
+        let u = self.with_edge(b, a)?;
         let other = self.tris[u as usize];
         let j = (0..3).find(|&j| other[j] == b && other[(j + 1) % 3] == a)?;
         let c = other[(j + 2) % 3];
-        if c == v || self.edges.contains_key(&(v, c)) || self.edges.contains_key(&(c, v)) {
+        if c == v || self.with_edge(v, c).is_some() || self.with_edge(c, v).is_some() {
             return None;
         }
         let normal = twice_normal(self.corners(tri)) + twice_normal(self.corners(other));
@@ -299,14 +312,12 @@ impl Work {
         if self.shell_tris[self.shell[from as usize] as usize] <= 4 {
             return None;
         }
-        let t2 = *self
-            .edges
-            .get(&(to, from))
-            .or_else(|| self.edges.get(&(from, to)).filter(|&&u| u != t))?;
-        let t1 = *self
-            .edges
-            .get(&(from, to))
-            .or_else(|| self.edges.get(&(to, from)))?;
+        let t2 = self
+            .with_edge(to, from)
+            .or_else(|| self.with_edge(from, to).filter(|&u| u != t))?;
+        let t1 = self
+            .with_edge(from, to)
+            .or_else(|| self.with_edge(to, from))?;
         let (t1, t2) = if t1 == t2 { (t, t2) } else { (t1, t2) };
         if t1 == t2 {
             return None;
@@ -438,17 +449,15 @@ impl Work {
 
     fn unlink(&mut self, t: u32) {
         let tri = self.tris[t as usize];
-        for k in 0..3 {
-            self.edges.remove(&(tri[k], tri[(k + 1) % 3]));
-            self.around[tri[k] as usize].retain(|u| *u != t);
+        for v in tri {
+            self.around[v as usize].retain(|u| *u != t);
         }
     }
 
     fn link(&mut self, t: u32) {
         let tri = self.tris[t as usize];
-        for k in 0..3 {
-            self.edges.insert((tri[k], tri[(k + 1) % 3]), t);
-            self.around[tri[k] as usize].push(t);
+        for v in tri {
+            self.around[v as usize].push(t);
         }
     }
 
