@@ -365,7 +365,10 @@ impl Work {
         };
         let mut dev: f64 = 0.0;
         let mut swept = 0.0;
-        for (u, end) in fan(from).map(|u| (u, source)).chain(fan(to).map(|u| (u, target))) {
+        for (u, end) in fan(from)
+            .map(|u| (u, source))
+            .chain(fan(to).map(|u| (u, target)))
+        {
             let old = self.tris[u as usize];
             let new = moved(old);
             let (before, after) = (self.corners(old), corners(new));
