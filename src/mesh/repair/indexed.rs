@@ -104,7 +104,7 @@ pub(super) fn repair(
             }
         }
     }
-    tjunction::insert_on_edges(&positions, &mut rings, delta, &wide, true, &seam);
+    tjunction::insert_on_edges(&positions, &[], &mut rings, delta, &wide, true, &seam);
     let (mut triangles, mut sources) =
         regions::triangulate_regions(&positions, &rings, polygons, delta, &pinned);
     // The core's own vertices, in the order they were numbered above.
