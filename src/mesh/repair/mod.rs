@@ -21,6 +21,7 @@
 
 mod cracks;
 mod edges;
+mod indexed;
 mod regions;
 mod shells;
 mod thin;
@@ -33,6 +34,8 @@ use super::Mesh;
 use super::weld::{Wide, weld_within};
 use crate::geom::Tolerance;
 use crate::polygon::{Polygon, dedup_ring};
+
+pub(crate) use indexed::Indexed;
 
 /// Positions closer than this many plane tolerances are one vertex; a vertex this close to an
 /// edge lies on it.
@@ -75,34 +78,46 @@ pub(crate) struct Ring {
 
 /// The repaired mesh of a closed polygon soup whose booleans used plane tolerance `eps`.
 ///
-/// The first pass searches for T-junctions only on edges not already matched; if it leaves
-/// cracks (edges used by one triangle), a pass searches every edge. Where a few cracks remain
-/// (at most [`WIDEN_CRACKS`] crack points), each further pass lets the points near them weld
-/// and join edges ten times farther, and the pass with the fewest cracks is kept. Every pass
-/// drops closed shells thinner than the weld (see [`thin`]).
-pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64) -> Mesh {
-    counted_repair(polygons, eps).0
+/// Where the boolean kept its far parts indexed (`index`), the first pass repairs only the rim
+/// and the cut polygons and passes the core's fans through ([`indexed`]); if that leaves cracks,
+/// every polygon takes the passes below. Otherwise the first pass searches for T-junctions only
+/// on edges not already matched; if it leaves cracks (edges used by one triangle), a pass
+/// searches every edge. Where a few cracks remain (at most [`WIDEN_CRACKS`] crack points), each
+/// further pass lets the points near them weld and join edges ten times farther, and the pass
+/// with the fewest cracks is kept. Every pass drops closed shells thinner than the weld (see
+/// [`thin`]).
+pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> Mesh {
+    counted_repair(polygons, eps, index).0
 }
 
-/// [`polygons_to_mesh`], and how many repair passes it took: at most `WELD_RETRIES + 3`, and at
-/// most two where more than [`WIDEN_CRACKS`] crack points are left.
-fn counted_repair(polygons: &[Polygon], eps: f64) -> (Mesh, u32) {
+/// [`polygons_to_mesh`], and how many repair passes it took (the indexed one included): at
+/// most `WELD_RETRIES + 4`, and at most three where more than [`WIDEN_CRACKS`] crack points are
+/// left.
+fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (Mesh, u32) {
     if polygons.is_empty() {
         return (Mesh::default(), 0);
     }
     let delta = WELD_TOLERANCES * eps;
-    let mut wide = Wide::default();
-    // First the quick pass, then the full T-junction search at the same weld.
-    let (mut mesh, mut cracks) = repair(polygons, delta, &wide, true, None);
-    let mut passes = 1;
-    if !cracks.is_empty() {
-        (mesh, cracks) = repair(polygons, delta, &wide, false, None);
-        passes += 1;
-    }
     // Needles are judged at the scale of the shell, as the report judges them, but never of
     // more than `NEEDLE_REGION_REACH` times the region the boolean worked in (see
     // [`super::needles::remove_needles`]).
     let scale = Some(NEEDLE_REGION_REACH * eps / Tolerance::RELATIVE);
+    let mut passes = u32::from(index.is_some());
+    if let Some((mut mesh, cracks)) = index.and_then(|i| indexed::repair(polygons, i, delta))
+        && cracks.is_empty()
+    {
+        thin::drop_thin_shells(&mut mesh, delta, usize::MAX);
+        super::needles::remove_needles(&mut mesh, scale);
+        return (mesh, passes);
+    }
+    let mut wide = Wide::default();
+    // First the quick pass, then the full T-junction search at the same weld.
+    let (mut mesh, mut cracks) = repair(polygons, delta, &wide, true, None);
+    passes += 1;
+    if !cracks.is_empty() {
+        (mesh, cracks) = repair(polygons, delta, &wide, false, None);
+        passes += 1;
+    }
     if cracks.is_empty() {
         super::needles::remove_needles(&mut mesh, scale);
         return (mesh, passes);
@@ -138,6 +153,12 @@ fn counted_repair(polygons: &[Polygon], eps: f64) -> (Mesh, u32) {
     let mut mesh = best.mesh;
     super::needles::remove_needles(&mut mesh, scale);
     (mesh, passes)
+}
+
+/// Whether the indexed pass alone closes the mesh (no fallback to the full passes).
+#[cfg(test)]
+pub(crate) fn indexed_pass_closes(polygons: &[Polygon], eps: f64, index: &Indexed) -> bool {
+    indexed::repair(polygons, index, WELD_TOLERANCES * eps).is_some_and(|(_, c)| c.is_empty())
 }
 
 /// The best repair pass so far: a closed 2-manifold if any, else the one with fewest cracks.
@@ -190,6 +211,7 @@ fn repair(
         corners.extend_from_slice(p.vertices());
     }
     let (positions, map) = weld_within(&corners, delta, wide);
+    let drag = wide_drag(&corners, &positions, &map, delta, wide);
     let mut rings = Vec::with_capacity(polygons.len());
     let mut at = 0usize;
     for (i, p) in polygons.iter().enumerate() {
@@ -204,8 +226,9 @@ fn repair(
             });
         }
     }
-    tjunction::insert_on_edges(&positions, &mut rings, delta, wide, quick);
-    let mut triangles = regions::triangulate_regions(&positions, &rings, polygons, delta);
+    tjunction::insert_on_edges(&positions, &drag, &mut rings, delta, wide, quick, &[]);
+    let pinned = vec![false; positions.len()];
+    let mut triangles = regions::triangulate_regions(&positions, &rings, polygons, delta, &pinned);
     let filled_from = triangles.0.len();
     if let Some(flat) = fill_flat {
         cracks::close_flat_cracks(&positions, &mut triangles, flat);
@@ -213,6 +236,35 @@ fn repair(
     let (mut mesh, cracks) = shells::split_into_shells(positions, triangles);
     thin::drop_thin_shells(&mut mesh, delta, filled_from);
     (mesh, cracks)
+}
+
+/// Per welded vertex, how far a wider weld than `delta` moved a corner onto it (0 where none
+/// did); empty when nothing is widened.
+///
+/// A wide weld drags every edge at that corner with it: a vertex that lay within `delta` of
+/// the edge's middle as computed can then be up to the drag farther from it (bsp_6: welding
+/// two computations of one point 2.4·10⁻¹⁰ apart left a vertex 0.07 along the edge 1.15·10⁻¹⁰
+/// off it, 3.6 weld distances, and a new slit). The T-junction search allows each edge its
+/// ends' drag on top of the reach ([`tjunction::insert_on_edges`]). Ordinary welds move
+/// corners by at most `delta` and add nothing, so the first pass is unchanged.
+fn wide_drag(
+    corners: &[DVec3],
+    positions: &[DVec3],
+    map: &[u32],
+    delta: f64,
+    wide: &Wide,
+) -> Vec<f64> {
+    if wide.widest(delta) <= delta {
+        return Vec::new();
+    }
+    let mut drag = vec![0.0f64; positions.len()];
+    for (&c, &v) in corners.iter().zip(map) {
+        let moved = c.distance(positions[v as usize]);
+        if moved > delta {
+            drag[v as usize] = drag[v as usize].max(moved);
+        }
+    }
+    drag
 }
 
 /// False when welding collapsed the ring onto a line (width below `delta` everywhere).
@@ -245,18 +297,18 @@ mod tests {
             .rotate_axis_angle(DVec3::new(0.3, 1.0, 0.2), degrees)
             .unwrap();
         let d = a.difference(&b);
-        counted_repair(d.polygons(), d.tolerance().eps())
+        counted_repair(d.polygons(), d.tolerance().eps(), d.index())
     }
 
     /// A sphere less itself turned 1e-4° leaves thousands of crack points (its two operands cut
     /// each facet on lines a rounding error over 1.7e-6 rad apart): no wider weld closes them,
-    /// so the open result comes back after the two first passes, not seven.
+    /// so the open result comes back after the first passes (indexed, quick, full), not eight.
     #[test]
-    fn cracks_along_whole_crossings_end_the_repair_after_two_passes() {
+    fn cracks_along_whole_crossings_end_the_repair_early() {
         for segments in [32, 64] {
             let sphere = Solid::sphere(1.0, segments, segments / 2).unwrap();
             let (mesh, passes) = turned_difference(sphere, 1e-4);
-            assert_eq!(passes, 2, "{segments}");
+            assert!(passes <= 3, "{segments}: {passes}");
             assert!(mesh.report().boundary_edges > 0, "{segments}");
         }
     }
@@ -265,7 +317,7 @@ mod tests {
     #[test]
     fn a_few_cracks_are_still_widened_and_closed() {
         let (mesh, passes) = turned_difference(Solid::cube(1.0).unwrap(), 1e-4);
-        assert_eq!(passes, 3);
+        assert!(passes >= 3, "{passes}");
         assert!(mesh.report().is_closed_manifold(), "{}", mesh.report());
     }
 
