@@ -14,8 +14,9 @@
 //!   `abc`: the surface moves by at most that height. Taken when `v` is far from both ends of
 //!   `ab` (a *cap*).
 //! * **Collapse** the needle's shortest edge `pq`, moving `p` onto `q` and deleting the two
-//!   triangles beside it. The surface moves by at most `|pq|`. Taken when the needle has a
-//!   short edge (a *spike* or a speck).
+//!   triangles beside it; where that would change the volume, `q` moves off its place along
+//!   the fan's normal by what puts it back (a collapse keeps the volume). The surface moves by
+//!   about `|pq|`. Taken when the needle has a short edge (a *spike* or a speck).
 //!
 //! Neither is taken where it would change topology or fold the surface: a flip needs the new
 //! edge not to exist already; a collapse needs the link condition (the two ends share exactly
@@ -29,7 +30,6 @@ use smallvec::SmallVec;
 use super::Mesh;
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, MAX_MOVE, NEEDLE_AREA, Tolerance, is_zero_area};
-use crate::hash::FxHashMap;
 
 /// Removes the needles it can from `mesh`, keeping it closed and oriented. Returns how many
 /// needles (by the thresholds used here) remain; 0 also where the mesh is left alone: triangles
@@ -57,19 +57,27 @@ pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
         bbox.grow(p);
     }
     let largest_threshold = NEEDLE_AREA * bbox.diagonal().min(scale).powi(2);
+    // Twice the area, squared, against twice the threshold, squared: no square root per
+    // triangle (this check is all the pass does on most meshes).
+    let bar = (2.0 * largest_threshold).powi(2);
     let corners = |t: &[u32; 3]| t.map(|i| mesh.positions[i as usize]);
     if !mesh
         .triangles
         .iter()
-        .any(|t| area(corners(t)) < largest_threshold)
+        .any(|t| twice_normal(corners(t)).length_squared() < bar)
     {
         return 0;
     }
-    let mut work = Work::new(mesh, scale);
+    let mut work = Work::new(std::mem::take(mesh), scale);
     let mut queue: Vec<u32> = (0..work.tris.len() as u32)
         .filter(|&t| work.is_needle(t))
         .collect();
     if queue.is_empty() {
+        *mesh = Mesh {
+            positions: work.positions,
+            triangles: work.tris,
+            sources: work.sources,
+        };
         return 0;
     }
     // Each operation removes a needle or makes one's smallest area larger; the budget only
@@ -90,15 +98,17 @@ pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
     work.finish(mesh)
 }
 
-/// The mesh being edited: triangles with liveness, directed edges, triangles per vertex and the
-/// scale of each vertex's shell.
+/// The mesh being edited: triangles with liveness, triangles per vertex and the scale of each
+/// vertex's shell.
+///
+/// A directed edge is found among the few triangles around its start ([`Work::with_edge`]),
+/// not in a map of all edges: one needle in a sphere of 10⁶ triangles made the pass hash every
+/// edge (166 ms of 860 in `to_mesh`), for a handful of lookups.
 struct Work {
     positions: Vec<DVec3>,
     tris: Vec<[u32; 3]>,
     sources: Vec<u32>,
     alive: Vec<bool>,
-    /// Directed edge → the triangle that has it.
-    edges: FxHashMap<(u32, u32), u32>,
     /// Live triangles around each vertex.
     around: Vec<SmallVec<[u32; 8]>>,
     /// Per vertex: its shell's index.
@@ -112,7 +122,7 @@ struct Work {
 }
 
 impl Work {
-    fn new(mesh: &Mesh, scale: f64) -> Self {
+    fn new(mesh: Mesh, scale: f64) -> Self {
         let n = mesh.positions.len();
         let mut sets = DisjointSets::new(n);
         for t in &mesh.triangles {
@@ -139,21 +149,17 @@ impl Work {
             shell[v] = shell[sets.find(v)];
         }
         let diag: Vec<f64> = boxes.iter().map(|b| b.diagonal().min(scale)).collect();
-        let mut edges =
-            FxHashMap::with_capacity_and_hasher(mesh.triangles.len() * 3, Default::default());
         let mut around: Vec<SmallVec<[u32; 8]>> = vec![SmallVec::new(); n];
         for (t, tri) in mesh.triangles.iter().enumerate() {
-            for k in 0..3 {
-                edges.insert((tri[k], tri[(k + 1) % 3]), t as u32);
-                around[tri[k] as usize].push(t as u32);
+            for &v in tri {
+                around[v as usize].push(t as u32);
             }
         }
         Work {
-            positions: mesh.positions.clone(),
-            tris: mesh.triangles.clone(),
-            sources: mesh.sources.clone(),
             alive: vec![true; mesh.triangles.len()],
-            edges,
+            positions: mesh.positions,
+            tris: mesh.triangles,
+            sources: mesh.sources,
             around,
             shell,
             needle_area: diag.iter().map(|d| NEEDLE_AREA * d * d).collect(),
@@ -161,6 +167,14 @@ impl Work {
             tolerance: diag.iter().map(|d| Tolerance::RELATIVE * d).collect(),
             shell_tris,
         }
+    }
+
+    /// The live triangle with directed edge `a`→`b`, if any.
+    fn with_edge(&self, a: u32, b: u32) -> Option<u32> {
+        self.around[a as usize].iter().copied().find(|&t| {
+            let tri = self.tris[t as usize];
+            (0..3).any(|k| tri[k] == a && tri[(k + 1) % 3] == b)
+        })
     }
 
     fn corners(&self, tri: [u32; 3]) -> [DVec3; 3] {
@@ -225,7 +239,13 @@ impl Work {
         };
         match best?.1 {
             Op::Flip { t, u, new_t, new_u } => Some(self.apply_flip(t, u, new_t, new_u)),
-            Op::Collapse { from, to, t1, t2 } => Some(self.apply_collapse(from, to, t1, t2)),
+            Op::Collapse {
+                from,
+                to,
+                at,
+                t1,
+                t2,
+            } => Some(self.apply_collapse(from, to, at, t1, t2)),
         }
     }
 
@@ -234,11 +254,11 @@ impl Work {
     fn plan_flip(&self, t: u32, k: usize) -> Option<Plan> {
         let tri = self.tris[t as usize];
         let (a, b, v) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
-        let &u = self.edges.get(&(b, a))?;
+        let u = self.with_edge(b, a)?;
         let other = self.tris[u as usize];
         let j = (0..3).find(|&j| other[j] == b && other[(j + 1) % 3] == a)?;
         let c = other[(j + 2) % 3];
-        if c == v || self.edges.contains_key(&(v, c)) || self.edges.contains_key(&(c, v)) {
+        if c == v || self.with_edge(v, c).is_some() || self.with_edge(c, v).is_some() {
             return None;
         }
         let normal = twice_normal(self.corners(tri)) + twice_normal(self.corners(other));
@@ -274,23 +294,30 @@ impl Work {
     }
 
     /// Collapsing edge `from`–`to` of triangle `t` by moving `from` onto `to`: the move and the
-    /// operation, if the topology allows it and every triangle around `from` stays acceptable.
+    /// operation, if the topology allows it and every triangle around both ends stays
+    /// acceptable.
     ///
-    /// The move is measured both ways: how far `to` lies from the plane of each triangle around
-    /// `from` as it was, and `from` from each as it becomes. Sliding a vertex along a flat
-    /// region or a straight crease moves nothing, however long the edge.
+    /// The merged vertex keeps the volume: where moving `from` onto `to` would add or cut
+    /// some (the fan around `from` is not flat), it goes to the point off `to` along the merged
+    /// fan's area-weighted normal that puts it back. Specks fanned over a face where a sphere
+    /// grazes a box's corner cut volume at each collapse, all of one sign, whichever end was
+    /// kept (6.8·10⁻⁹ over eleven collapses); the offsets are at most 6·10⁻⁸ there. Where the fan around
+    /// `from` is flat, nothing moves off it.
+    ///
+    /// The move is measured both ways: how far the merged vertex lies from the plane of each
+    /// triangle around either end as it was, and each old end from each triangle as it
+    /// becomes. Sliding a vertex along a flat region or a straight crease moves nothing,
+    /// however long the edge.
     fn plan_collapse(&self, t: u32, from: u32, to: u32) -> Option<Plan> {
         if self.shell_tris[self.shell[from as usize] as usize] <= 4 {
             return None;
         }
-        let t2 = *self
-            .edges
-            .get(&(to, from))
-            .or_else(|| self.edges.get(&(from, to)).filter(|&&u| u != t))?;
-        let t1 = *self
-            .edges
-            .get(&(from, to))
-            .or_else(|| self.edges.get(&(to, from)))?;
+        let t2 = self
+            .with_edge(to, from)
+            .or_else(|| self.with_edge(from, to).filter(|&u| u != t))?;
+        let t1 = self
+            .with_edge(from, to)
+            .or_else(|| self.with_edge(to, from))?;
         let (t1, t2) = if t1 == t2 { (t, t2) } else { (t1, t2) };
         if t1 == t2 {
             return None;
@@ -306,35 +333,72 @@ impl Work {
             return None;
         }
         let (source, target) = (self.positions[from as usize], self.positions[to as usize]);
+        // The volume is linear in a vertex's position: moving `from` by `m` changes it by
+        // (area-weighted normal of its fan) · m / 6, `t1` and `t2` flattening to nothing.
+        let fan = |v: u32| {
+            self.around[v as usize]
+                .iter()
+                .copied()
+                .filter(move |&u| u != t1 && u != t2)
+        };
+        let moved = |old: [u32; 3]| old.map(|w| if w == from { to } else { w });
+        let mut change = 0.0;
+        for &u in &self.around[from as usize] {
+            change += twice_normal(self.corners(self.tris[u as usize])).dot(target - source) / 6.0;
+        }
+        let mut gradient = DVec3::ZERO;
+        for u in fan(from).chain(fan(to)) {
+            gradient += twice_normal(self.corners(moved(self.tris[u as usize])));
+        }
+        let at = match (6.0 * change / gradient.length_squared()) * gradient {
+            fix if fix.is_finite() && change != 0.0 => target - fix,
+            _ => target,
+        };
+        let corners = |tri: [u32; 3]| {
+            tri.map(|w| {
+                if w == to {
+                    at
+                } else {
+                    self.positions[w as usize]
+                }
+            })
+        };
         let mut dev: f64 = 0.0;
         let mut swept = 0.0;
-        for &u in &self.around[from as usize] {
-            if u == t1 || u == t2 {
-                continue;
-            }
+        for (u, end) in fan(from)
+            .map(|u| (u, source))
+            .chain(fan(to).map(|u| (u, target)))
+        {
             let old = self.tris[u as usize];
-            let new = old.map(|w| if w == from { to } else { w });
+            let new = moved(old);
+            let (before, after) = (self.corners(old), corners(new));
             // A needle's own plane is noise: then only flatness is checked.
-            let needle = area(self.corners(old)) < self.threshold(old);
+            let needle = area(before) < self.threshold(old);
             let reference = if needle {
-                twice_normal(self.corners(new))
+                twice_normal(after)
             } else {
-                twice_normal(self.corners(old))
+                twice_normal(before)
             };
-            if !self.acceptable(new, reference) {
+            if is_zero_area(after) || twice_normal(after).dot(reference) <= 0.0 {
                 return None;
             }
-            swept += (twice_normal(self.corners(old)).dot(target - source) / 6.0).abs();
+            swept += (twice_normal(before).dot(at - end) / 6.0).abs();
             if !needle {
                 dev = dev
-                    .max(plane_distance(self.corners(old), target))
-                    .max(plane_distance(self.corners(new), source));
+                    .max(plane_distance(before, at))
+                    .max(plane_distance(after, end));
             }
         }
         Some(Plan {
             dev,
             swept,
-            op: Op::Collapse { from, to, t1, t2 },
+            op: Op::Collapse {
+                from,
+                to,
+                at,
+                t1,
+                t2,
+            },
         })
     }
 
@@ -356,8 +420,10 @@ impl Work {
         shared == 2 && np.contains(&o1) && np.contains(&o2) && nq.contains(&o1) && nq.contains(&o2)
     }
 
-    /// Moves vertex `from` onto `to`, deleting `t1` and `t2` (the triangles on edge from–to).
-    fn apply_collapse(&mut self, from: u32, to: u32, t1: u32, t2: u32) -> Vec<u32> {
+    /// Moves vertex `from` onto `to`, and that to `at`, deleting `t1` and `t2` (the triangles
+    /// on edge from–to).
+    fn apply_collapse(&mut self, from: u32, to: u32, at: DVec3, t1: u32, t2: u32) -> Vec<u32> {
+        self.positions[to as usize] = at;
         let fan: SmallVec<[u32; 8]> = self.around[from as usize]
             .iter()
             .copied()
@@ -386,17 +452,15 @@ impl Work {
 
     fn unlink(&mut self, t: u32) {
         let tri = self.tris[t as usize];
-        for k in 0..3 {
-            self.edges.remove(&(tri[k], tri[(k + 1) % 3]));
-            self.around[tri[k] as usize].retain(|u| *u != t);
+        for v in tri {
+            self.around[v as usize].retain(|u| *u != t);
         }
     }
 
     fn link(&mut self, t: u32) {
         let tri = self.tris[t as usize];
-        for k in 0..3 {
-            self.edges.insert((tri[k], tri[(k + 1) % 3]), t);
-            self.around[tri[k] as usize].push(t);
+        for v in tri {
+            self.around[v as usize].push(t);
         }
     }
 
@@ -446,9 +510,11 @@ enum Op {
         new_t: [u32; 3],
         new_u: [u32; 3],
     },
+    /// `from` onto `to`, which moves to `at`.
     Collapse {
         from: u32,
         to: u32,
+        at: DVec3,
         t1: u32,
         t2: u32,
     },

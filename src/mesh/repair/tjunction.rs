@@ -12,7 +12,9 @@ use crate::mesh::weld::Wide;
 
 /// Inserts into every ring edge, in order along it, each vertex within its reach (`delta`, or
 /// `wide.delta` for the listed crack vertices) of the edge's interior and farther than that
-/// from its ends. `O((E + k) log V)` with a BVH over the vertices.
+/// from its ends. An edge whose ends a wide weld moved (`drag`, per vertex, empty when none
+/// did) lies up to that move off where it was computed, so it takes vertices that much
+/// farther too. `O((E + k) log V)` with a BVH over the vertices.
 ///
 /// With `skip_matched`, an edge whose reverse some other ring already has is taken as matched
 /// and left alone: usually only the polygons on its two sides meet along it, and that is most
@@ -20,6 +22,7 @@ use crate::mesh::weld::Wide;
 /// the pass leaves a crack, and the caller retries checking every edge.
 pub(super) fn insert_on_edges(
     positions: &[DVec3],
+    drag: &[f64],
     rings: &mut [Ring],
     delta: f64,
     wide: &Wide,
@@ -86,10 +89,12 @@ pub(super) fn insert_on_edges(
             if len2 == 0.0 {
                 continue;
             }
+            let dragged = |v: u32| drag.get(v as usize).copied().unwrap_or(0.0);
+            let slack = dragged(ia).max(dragged(ib));
             let query = Aabb::new(a.min(b), a.max(b));
             on_edge.clear();
             bvh.visit(
-                |bx| bx.overlaps(&query, search),
+                |bx| bx.overlaps(&query, search + slack),
                 |item| {
                     let w = points[item as usize];
                     if w != ia && w != ib {
@@ -100,7 +105,7 @@ pub(super) fn insert_on_edges(
                         let len = len2.sqrt();
                         let along = (p - a).dot(d) / len;
                         let off = (p - a).cross(d).length() / len;
-                        if along > r && along < len - r && off <= r {
+                        if along > r && along < len - r && off <= r + slack {
                             on_edge.push((along, w));
                         }
                     }
