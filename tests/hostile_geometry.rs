@@ -294,3 +294,41 @@ fn shells_overlapping_in_shared_planes_are_refused_and_face_to_face_ones_accepte
     assert!(run.stderr.contains("twice.obj"), "{}", run.stderr);
     assert!(!out.exists());
 }
+
+/// Two cubes touching along an edge: their union is two closed shells in memory (the edge's
+/// vertices doubled), but a mesh file joins equal positions, so read back the edge has four
+/// faces. The command says so rather than exit 0 silently with a file that fails its own
+/// report (issue 12 item 3; a cube less itself turned 10⁻³° gave such slivers).
+#[test]
+fn shells_touching_along_an_edge_are_written_with_a_warning_that_they_read_back_non_manifold() {
+    let dir = Scratch::new("edge-touch");
+    let (a, b) = (dir.path("a.obj"), dir.path("b.obj"));
+    fs::write(&a, box_obj_text([0.0; 3], [1.0; 3])).unwrap();
+    let out = dir.path("out.obj");
+    let union = || {
+        bspcsg([
+            "union".as_ref(),
+            a.as_os_str(),
+            b.as_os_str(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ])
+        .ok()
+    };
+    fs::write(&b, box_obj_text([1.0, 1.0, 0.0], [2.0, 2.0, 1.0])).unwrap();
+    let run = union();
+    assert!(
+        run.stderr
+            .contains("its shells touch along 1 edges and at 2 vertices"),
+        "{}",
+        run.stderr
+    );
+    let report = read_mesh(&out).unwrap().report();
+    assert_eq!(report.non_manifold_edges, 1, "{report}");
+    assert!((report.volume - 2.0).abs() < 1e-12, "{report}");
+    // Overlapping instead: one shell, no warning.
+    fs::write(&b, box_obj_text([0.5; 3], [1.5; 3])).unwrap();
+    let run = union();
+    assert!(!run.stderr.contains("warning"), "{}", run.stderr);
+    assert!(read_mesh(&out).unwrap().report().is_closed_manifold());
+}

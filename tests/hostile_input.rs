@@ -181,6 +181,22 @@ fn gltf_instancing_over_the_triangle_budget_is_refused_quickly() {
     assert!(!out.exists());
     bspcsg([OsStr::new("info"), doc.as_os_str()]).code(2);
 
+    // One node drawing one mesh of 20,000 primitives on the same accessors: the same count.
+    let one = instanced_doc(&s, "prims", 1200, 1);
+    let primitive = r#"{"attributes": {"POSITION": 0}, "indices": 1}"#;
+    let text = fs::read_to_string(&one).unwrap().replace(
+        &format!("[{primitive}]"),
+        &format!("[{}]", vec![primitive; 20_000].join(",")),
+    );
+    assert!(text.len() < 1_000_000, "{} bytes", text.len());
+    fs::write(&one, text).unwrap();
+    let run = bspcsg(["info".as_ref(), one.as_os_str()]).code(2);
+    assert!(
+        run.stderr.contains("24000000 triangles") && run.stderr.contains("prims.gltf"),
+        "{}",
+        run.stderr
+    );
+
     // Below the budget the same instancing reads: 20 instances, 24,000 triangles placed.
     let doc = instanced_doc(&s, "few", 1200, 20);
     let m = read_mesh(&doc).unwrap();
