@@ -3,11 +3,11 @@
 
 use glam::DVec3;
 
+use super::far::{assemble, keep_far};
 use super::{PrecisionLoss, Solid};
 use crate::bsp::{Coplanar, FOCUS_MARGIN, Label, Surface, Tree};
-use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, Plane, Tolerance};
-use crate::hash::{KeyedHashMap, key};
+use crate::mesh::repair::WELD_TOLERANCES;
 use crate::polygon::{Polygon, Split, attach_edge_planes};
 
 /// A boolean operation.
@@ -136,8 +136,14 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
     // A tolerance asked for by the caller is not a loss; one forced by the coordinates'
     // magnitude or carried from a larger boolean is, where it dwarfs the region.
     let lost = inherited.or_else(|| PrecisionLoss::check(&region, needed));
-    let a = cut_down(a.into_polygons(), &box_b, eps);
-    let b = cut_down(b.into_polygons(), &box_a, eps);
+    // An operand made by no boolean shares its vertices bit for bit (a mesh, a primitive), so
+    // its far part can be passed on indexed; cut down, it has T-junctions.
+    let flat = WELD_TOLERANCES * eps;
+    let (a_exact, b_exact) = (a.carried_eps() == 0.0, b.carried_eps() == 0.0);
+    let (a, a_cut) = cut_down(a.into_polygons(), &box_b, eps);
+    let (b, b_cut) = cut_down(b.into_polygons(), &box_a, eps);
+    let a_flat = (a_exact && !a_cut).then_some(flat);
+    let b_flat = (b_exact && !b_cut).then_some(flat);
     let (a_rule, a_keep) = match op {
         BoolOp::Union => (Coplanar::SameFront, Label::Outside),
         BoolOp::Intersection => (Coplanar::SameBack, Label::Inside),
@@ -153,31 +159,23 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
     let (a_kept, b_kept) = rayon::join(
         || {
             let tree_b = Tree::build_focused(&b, eps, Some(&boxes(&a, &near_a)));
-            let mut kept = keep_far(&a, &near_a, &surface_b, a_keep);
+            let far = keep_far(&a, &near_a, &surface_b, a_keep, a_flat);
             let near = tree_b.clip(pick(&a, &near_a), a_keep, a_rule, &surface_b);
-            kept.extend(near.into_iter().map(|c| c.polygon));
-            kept
+            (far, near.into_iter().map(|c| c.polygon).collect())
         },
         || {
             let tree_a = Tree::build_focused(&a, eps, Some(&boxes(&b, &near_b)));
-            let mut kept = keep_far(&b, &near_b, &surface_a, b_keep);
+            let far = keep_far(&b, &near_b, &surface_a, b_keep, b_flat);
             let first = tree_a.clip(pick(&b, &near_b), b_keep, Coplanar::SameFront, &surface_a);
             let (again, done): (Vec<_>, Vec<_>) = first.into_iter().partition(|c| c.coplanar);
             let again: Vec<Polygon> = again.into_iter().map(|c| c.polygon).collect();
             let second = tree_a.clip(again, b_keep, Coplanar::SameBack, &surface_a);
-            kept.extend(done.into_iter().chain(second).map(|c| c.polygon));
-            kept
+            let near: Vec<Polygon> = done.into_iter().chain(second).map(|c| c.polygon).collect();
+            (far, near)
         },
     );
-    let mut polygons = a_kept;
-    polygons.reserve(b_kept.len());
-    for mut p in b_kept {
-        if op == BoolOp::Difference {
-            p.flip();
-        }
-        polygons.push(p);
-    }
-    Solid::with_eps(polygons, eps, lost)
+    let (polygons, index) = assemble(a_kept, b_kept, op == BoolOp::Difference);
+    Solid::with_eps(polygons, eps, lost).with_index(index)
 }
 
 /// A polygon whose box is this many times the other operand's is cut down first.
@@ -191,10 +189,12 @@ const HUGE: f64 = 16.0;
 /// coordinate is the plane's, the others the edge's), so a huge face (a box out to 10³⁸ around
 /// a small part) becomes a piece with small, exact corners where the other operand is, and
 /// pieces far away that are classified whole.
-fn cut_down(polys: Vec<Polygon>, other: &Aabb, eps: f64) -> Vec<Polygon> {
+///
+/// Also says whether anything was cut.
+fn cut_down(polys: Vec<Polygon>, other: &Aabb, eps: f64) -> (Vec<Polygon>, bool) {
     let reach = HUGE * other.diagonal();
     if !polys.iter().any(|p| p.bbox().diagonal() > reach) {
-        return polys;
+        return (polys, false);
     }
     let frame = other.expanded(0.25 * other.diagonal() + eps);
     let mut planes = Vec::with_capacity(6);
@@ -225,7 +225,7 @@ fn cut_down(polys: Vec<Polygon>, other: &Aabb, eps: f64) -> Vec<Polygon> {
         }
         out.extend(inside);
     }
-    out
+    (out, true)
 }
 
 /// The polygons near the other surface, the ones clipped, each edge knowing its neighbour's
@@ -248,37 +248,6 @@ fn boxes(polys: &[Polygon], near: &[bool]) -> Vec<Aabb> {
         .filter(|(_, n)| **n)
         .map(|(p, _)| p.bbox())
         .collect()
-}
-
-/// The polygons away from the other surface whose region is labelled `keep`. Polygons sharing a
-/// vertex, both away from the other surface, lie in the same region, so each connected group
-/// needs one ray.
-fn keep_far(polys: &[Polygon], near: &[bool], other: &Surface, keep: Label) -> Vec<Polygon> {
-    let mut groups = DisjointSets::new(polys.len());
-    let mut first_at: KeyedHashMap<[u64; 3], u32> =
-        KeyedHashMap::with_capacity_and_hasher(polys.len(), Default::default());
-    for (i, p) in polys.iter().enumerate() {
-        if near[i] {
-            continue;
-        }
-        for &v in p.vertices() {
-            let j = *first_at.entry(key(v)).or_insert(i as u32);
-            groups.union(i, j as usize);
-        }
-    }
-    let mut label: Vec<Option<Label>> = vec![None; polys.len()];
-    let mut kept = Vec::new();
-    for (i, p) in polys.iter().enumerate() {
-        if near[i] {
-            continue;
-        }
-        let root = groups.find(i);
-        let l = *label[root].get_or_insert_with(|| other.label(p.centroid()));
-        if l == keep {
-            kept.push(p.clone());
-        }
-    }
-    kept
 }
 
 /// The result when the operands cannot interact: one is empty or their boxes do not meet.

@@ -13,7 +13,7 @@ impl Solid {
     /// id. See [`Solid::to_mesh_unrepaired`] for the plain fan triangulation.
     #[must_use]
     pub fn to_mesh(&self) -> Mesh {
-        repair::polygons_to_mesh(self.polygons(), self.tolerance().eps())
+        repair::polygons_to_mesh(self.polygons(), self.tolerance().eps(), self.index())
     }
 
     /// Each polygon fanned into triangles, positions welded bit for bit and nothing else:

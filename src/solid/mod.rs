@@ -11,6 +11,7 @@
 mod boolean;
 mod checked;
 mod convert;
+mod far;
 mod measure;
 mod ops;
 mod overlapping;
@@ -23,6 +24,7 @@ pub use ops::boolean_all;
 
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, Tolerance};
+use crate::mesh::repair::Indexed;
 use crate::polygon::Polygon;
 
 /// A solid bounded by convex planar polygons whose normals point outward.
@@ -38,6 +40,9 @@ pub struct Solid {
     /// The first boolean on the way to this solid that could not resolve the region its
     /// operands met in (see [`Solid::check_precision`]).
     lost: Option<PrecisionLoss>,
+    /// The polygons a boolean passed through whole, with vertex ids (see [`Indexed`]): kept
+    /// only while the polygons are the boolean's own, so any change to them drops it.
+    index: Option<Indexed>,
 }
 
 /// A boolean whose operands met in a region too small for the tolerance it had to use: the
@@ -80,6 +85,7 @@ impl Solid {
             polygons,
             eps: 0.0,
             lost: None,
+            index: None,
         }
     }
 
@@ -88,7 +94,19 @@ impl Solid {
             polygons,
             eps,
             lost,
+            index: None,
         }
+    }
+
+    /// The solid with what its boolean knew of its topology (see [`Indexed`]).
+    pub(crate) fn with_index(mut self, index: Option<Indexed>) -> Self {
+        self.index = index;
+        self
+    }
+
+    /// The index of the polygons passed through whole, for `to_mesh`.
+    pub(crate) fn index(&self) -> Option<&Indexed> {
+        self.index.as_ref()
     }
 
     /// Whether this solid was made within the precision contract (the crate docs,

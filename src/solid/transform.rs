@@ -12,6 +12,7 @@ impl Solid {
     /// The solid turned inside out: every polygon flipped (the complement, for booleans).
     #[must_use]
     pub fn flipped(mut self) -> Self {
+        self.index = None;
         for p in &mut self.polygons {
             p.flip();
         }
@@ -139,6 +140,7 @@ impl Solid {
             polygons,
             eps: self.eps * det.abs().cbrt(),
             lost: self.lost,
+            index: None,
         })
     }
 
@@ -156,6 +158,7 @@ impl Solid {
             polygons,
             eps: self.eps,
             lost: self.lost,
+            index: None,
         }
     }
 }

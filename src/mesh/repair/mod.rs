@@ -21,6 +21,7 @@
 
 mod cracks;
 mod edges;
+mod indexed;
 mod regions;
 mod shells;
 mod tjunction;
@@ -32,6 +33,8 @@ use super::Mesh;
 use super::weld::{Wide, weld_within};
 use crate::geom::Tolerance;
 use crate::polygon::{Polygon, dedup_ring};
+
+pub(crate) use indexed::Indexed;
 
 /// Positions closer than this many plane tolerances are one vertex; a vertex this close to an
 /// edge lies on it.
@@ -63,25 +66,33 @@ pub(crate) struct Ring {
 
 /// The repaired mesh of a closed polygon soup whose booleans used plane tolerance `eps`.
 ///
-/// The first pass searches for T-junctions only on edges not already matched; if it leaves
+/// Where the boolean kept its far parts indexed (`index`), the first pass repairs only the rim
+/// and the cut polygons and passes the core's fans through ([`indexed`]); if that leaves cracks,
+/// every polygon takes the passes below. Otherwise the first pass searches for T-junctions only on edges not already matched; if it leaves
 /// cracks (edges used by one triangle), a pass searches every edge. Where cracks remain, each
 /// further pass lets the points near them weld and join edges ten times farther, and the pass
 /// with the fewest cracks is kept.
-pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64) -> Mesh {
+pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> Mesh {
     if polygons.is_empty() {
         return Mesh::default();
     }
     let delta = WELD_TOLERANCES * eps;
+    // Needles are judged at the scale of the shell, as the report judges them, but never of
+    // more than `NEEDLE_REGION_REACH` times the region the boolean worked in (see
+    // [`super::needles::remove_needles`]).
+    let scale = Some(NEEDLE_REGION_REACH * eps / Tolerance::RELATIVE);
+    if let Some((mut mesh, cracks)) = index.and_then(|i| indexed::repair(polygons, i, delta))
+        && cracks.is_empty()
+    {
+        super::needles::remove_needles(&mut mesh, scale);
+        return mesh;
+    }
     let mut wide = Wide::default();
     // First the quick pass, then the full T-junction search at the same weld.
     let (mut mesh, mut cracks) = repair(polygons, delta, &wide, true, None);
     if !cracks.is_empty() {
         (mesh, cracks) = repair(polygons, delta, &wide, false, None);
     }
-    // Needles are judged at the scale of the shell, as the report judges them, but never of
-    // more than `NEEDLE_REGION_REACH` times the region the boolean worked in (see
-    // [`super::needles::remove_needles`]).
-    let scale = Some(NEEDLE_REGION_REACH * eps / Tolerance::RELATIVE);
     if cracks.is_empty() {
         super::needles::remove_needles(&mut mesh, scale);
         return mesh;
@@ -110,6 +121,12 @@ pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64) -> Mesh {
     let mut mesh = best.mesh;
     super::needles::remove_needles(&mut mesh, scale);
     mesh
+}
+
+/// Whether the indexed pass alone closes the mesh (no fallback to the full passes).
+#[cfg(test)]
+pub(crate) fn indexed_pass_closes(polygons: &[Polygon], eps: f64, index: &Indexed) -> bool {
+    indexed::repair(polygons, index, WELD_TOLERANCES * eps).is_some_and(|(_, c)| c.is_empty())
 }
 
 /// The best repair pass so far: a closed 2-manifold if any, else the one with fewest cracks.
@@ -177,8 +194,9 @@ fn repair(
             });
         }
     }
-    tjunction::insert_on_edges(&positions, &drag, &mut rings, delta, wide, quick);
-    let mut triangles = regions::triangulate_regions(&positions, &rings, polygons, delta);
+    tjunction::insert_on_edges(&positions, &drag, &mut rings, delta, wide, quick, &[]);
+    let pinned = vec![false; positions.len()];
+    let mut triangles = regions::triangulate_regions(&positions, &rings, polygons, delta, &pinned);
     if let Some(flat) = fill_flat {
         cracks::close_flat_cracks(&positions, &mut triangles, flat);
     }

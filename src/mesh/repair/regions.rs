@@ -18,11 +18,13 @@ struct Region {
 }
 
 /// Triangles (with their source ids) covering every ring, regions merged where possible.
+/// `pins` marks vertices no region may drop (ones that polygons outside `rings` use).
 pub(super) fn triangulate_regions(
     positions: &[DVec3],
     rings: &[Ring],
     polygons: &[Polygon],
     delta: f64,
+    pins: &[bool],
 ) -> (Vec<[u32; 3]>, Vec<u32>) {
     let mut regions = group(positions, rings, polygons, delta);
     loop {
@@ -33,7 +35,7 @@ pub(super) fn triangulate_regions(
             .iter()
             .map(|r| lone_triangle(positions, rings, r))
             .collect();
-        let mut pinned = vec![false; positions.len()];
+        let mut pinned = pins.to_vec();
         for t in lone.iter().flatten() {
             for &v in t {
                 pinned[v as usize] = true;

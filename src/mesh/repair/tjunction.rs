@@ -19,7 +19,9 @@ use crate::mesh::weld::Wide;
 /// With `skip_matched`, an edge whose reverse some other ring already has is taken as matched
 /// and left alone: usually only the polygons on its two sides meet along it, and that is most
 /// edges, so most queries are skipped. Where a sliver's vertex lies on such an edge after all,
-/// the pass leaves a crack, and the caller retries checking every edge.
+/// the pass leaves a crack, and the caller retries checking every edge. `outside` lists directed
+/// edges of polygons not among `rings` (the core of an indexed boolean) that match ring edges
+/// all the same.
 pub(super) fn insert_on_edges(
     positions: &[DVec3],
     drag: &[f64],
@@ -27,6 +29,7 @@ pub(super) fn insert_on_edges(
     delta: f64,
     wide: &Wide,
     skip_matched: bool,
+    outside: &[(u32, u32)],
 ) {
     let mut first_edge: Vec<usize> = Vec::with_capacity(rings.len() + 1);
     let mut total = 0usize;
@@ -35,7 +38,7 @@ pub(super) fn insert_on_edges(
         total += ring.verts.len();
     }
     let matched = if skip_matched {
-        reversed_edges(rings, total, positions.len())
+        reversed_edges(rings, outside, total, positions.len())
     } else {
         vec![false; total]
     };
@@ -126,23 +129,30 @@ pub(super) fn insert_on_edges(
     });
 }
 
-/// For each ring edge (rings in order, edges in ring order), whether some ring uses it the
-/// other way: one sort of the half-edges by undirected edge rather than a hash set of them.
-fn reversed_edges(rings: &[Ring], total: usize, vertex_count: usize) -> Vec<bool> {
+/// For each ring edge (rings in order, edges in ring order), whether some ring, or an
+/// `outside` edge, uses it the other way: one sort of the half-edges by undirected edge rather
+/// than a hash set of them.
+fn reversed_edges(
+    rings: &[Ring],
+    outside: &[(u32, u32)],
+    total: usize,
+    vertex_count: usize,
+) -> Vec<bool> {
     // (undirected edge, half-edge index << 1 | runs from the larger index to the smaller).
-    let mut keyed: Vec<(u64, u32)> = Vec::with_capacity(total);
-    for ring in rings {
+    let mut keyed: Vec<(u64, u32)> = Vec::with_capacity(total + outside.len());
+    let ring_edges = rings.iter().flat_map(|ring| {
         let n = ring.verts.len();
-        for k in 0..n {
-            let (a, b) = (ring.verts[k], ring.verts[(k + 1) % n]);
-            keyed.push((
-                undirected(a, b),
-                (keyed.len() as u32) << 1 | u32::from(a > b),
-            ));
-        }
+        (0..n).map(move |k| (ring.verts[k], ring.verts[(k + 1) % n]))
+    });
+    for (a, b) in ring_edges.chain(outside.iter().copied()) {
+        keyed.push((
+            undirected(a, b),
+            (keyed.len() as u32) << 1 | u32::from(a > b),
+        ));
     }
     sort_by_edge(&mut keyed, vertex_count);
-    let mut matched = vec![false; total];
+    // Outside edges are numbered past the rings' and need no answer of their own.
+    let mut matched = vec![false; total + outside.len()];
     let mut i = 0;
     while i < keyed.len() {
         let mut j = i + 1;
@@ -157,5 +167,6 @@ fn reversed_edges(rings: &[Ring], total: usize, vertex_count: usize) -> Vec<bool
         }
         i = j;
     }
+    matched.truncate(total);
     matched
 }

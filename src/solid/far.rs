@@ -1,0 +1,292 @@
+//! The polygons a boolean keeps whole, away from the other operand, numbered by vertex so that
+//! `to_mesh` repairs only around the cut (see [`Indexed`]).
+
+use crate::bsp::{Label, Surface};
+use crate::disjoint_sets::DisjointSets;
+use crate::hash::{KeyedHashMap, key};
+use crate::mesh::repair::Indexed;
+use crate::polygon::Polygon;
+
+/// One operand's kept far polygons: `polygons[..core]` the core, `polygons[core..core + rim]`
+/// the rim, both with their corners' vertex ids in `ids`; the rest (an operand not indexed)
+/// without.
+#[derive(Default)]
+pub(super) struct Far {
+    polygons: Vec<Polygon>,
+    ids: Vec<u32>,
+    core: usize,
+    rim: usize,
+    vertex_count: u32,
+}
+
+/// The polygons away from the other surface whose region is labelled `keep`. Polygons sharing a
+/// vertex, both away from the other surface, lie in the same region, so each connected group
+/// needs one ray.
+///
+/// With `flat` (the weld distance of `to_mesh`, for an operand whose polygons share their
+/// vertices bit for bit), they are also sorted into core and rim: a kept polygon is core when
+/// none of its vertices is used by a polygon near the other surface (then every polygon around
+/// them is far, in the same group, and kept) and none is shared by two polygons of one source
+/// that `to_mesh` could merge as coplanar (each's corners within `flat` of the other's plane).
+pub(super) fn keep_far(
+    polys: &[Polygon],
+    near: &[bool],
+    other: &Surface,
+    keep: Label,
+    flat: Option<f64>,
+) -> Far {
+    let mut groups = DisjointSets::new(polys.len());
+    let mut id_of: KeyedHashMap<[u64; 3], u32> =
+        KeyedHashMap::with_capacity_and_hasher(polys.len(), Default::default());
+    // Per vertex id, the first polygon using it; per polygon, where its ids start.
+    let mut first: Vec<u32> = Vec::with_capacity(polys.len());
+    let mut start: Vec<u32> = Vec::with_capacity(polys.len() + 1);
+    let mut ids: Vec<u32> = Vec::with_capacity(polys.len() * 3);
+    for (i, p) in polys.iter().enumerate() {
+        start.push(ids.len() as u32);
+        if near[i] {
+            continue;
+        }
+        for &v in p.vertices() {
+            let next = first.len() as u32;
+            let id = *id_of.entry(key(v)).or_insert(next);
+            if id == next {
+                first.push(i as u32);
+            } else {
+                groups.union(i, first[id as usize] as usize);
+            }
+            ids.push(id);
+        }
+    }
+    start.push(ids.len() as u32);
+    let mut label: Vec<Option<Label>> = vec![None; polys.len()];
+    let mut kept: Vec<u32> = Vec::new();
+    for (i, p) in polys.iter().enumerate() {
+        if near[i] {
+            continue;
+        }
+        let root = groups.find(i);
+        let l = *label[root].get_or_insert_with(|| other.label(p.centroid()));
+        if l == keep {
+            kept.push(i as u32);
+        }
+    }
+    let Some(flat) = flat else {
+        return Far {
+            polygons: kept.iter().map(|&i| polys[i as usize].clone()).collect(),
+            ..Far::default()
+        };
+    };
+    let corners = |i: u32| &ids[start[i as usize] as usize..start[i as usize + 1] as usize];
+    // Vertices that cannot be core: used by a near polygon, or where two polygons may merge.
+    let mut open = vec![false; first.len()];
+    for (i, p) in polys.iter().enumerate() {
+        if near[i] {
+            for v in p.vertices() {
+                if let Some(&id) = id_of.get(&key(*v)) {
+                    open[id as usize] = true;
+                }
+            }
+        }
+    }
+    drop(id_of);
+    // The kept polygons around each vertex (a compressed table by vertex id).
+    let mut around_at = vec![0u32; first.len() + 1];
+    for &i in &kept {
+        for &id in corners(i) {
+            around_at[id as usize + 1] += 1;
+        }
+    }
+    for v in 0..first.len() {
+        around_at[v + 1] += around_at[v];
+    }
+    let mut fill = around_at.clone();
+    let mut around = vec![0u32; around_at[first.len()] as usize];
+    for &i in &kept {
+        for &id in corners(i) {
+            around[fill[id as usize] as usize] = i;
+            fill[id as usize] += 1;
+        }
+    }
+    for v in 0..first.len() {
+        if open[v] {
+            continue;
+        }
+        let star = &around[around_at[v] as usize..around_at[v + 1] as usize];
+        open[v] = star.iter().enumerate().any(|(k, &x)| {
+            star[k + 1..]
+                .iter()
+                .any(|&y| mergeable(&polys[x as usize], &polys[y as usize], flat))
+        });
+    }
+    let (mut core, mut rim): (Vec<u32>, Vec<u32>) = kept
+        .into_iter()
+        .partition(|&i| corners(i).iter().all(|&id| !open[id as usize]));
+    let (n_core, n_rim) = (core.len(), rim.len());
+    core.append(&mut rim);
+    let mut out_ids = Vec::with_capacity(core.iter().map(|&i| corners(i).len()).sum());
+    for &i in &core {
+        out_ids.extend_from_slice(corners(i));
+    }
+    Far {
+        polygons: core.iter().map(|&i| polys[i as usize].clone()).collect(),
+        ids: out_ids,
+        core: n_core,
+        rim: n_rim,
+        vertex_count: first.len() as u32,
+    }
+}
+
+/// Whether `to_mesh` could put the two polygons in one coplanar region: one source, facing the
+/// same way, the corners of one within `flat` of the other's plane.
+fn mergeable(p: &Polygon, q: &Polygon, flat: f64) -> bool {
+    let within = |a: &Polygon, b: &Polygon| {
+        b.vertices()
+            .iter()
+            .all(|&v| a.plane().distance(v).abs() <= flat)
+    };
+    p.source() == q.source()
+        && p.plane().normal.dot(q.plane().normal) > 0.0
+        && (within(p, q) || within(q, p))
+}
+
+/// The boolean's output: both operands' cores, then A's rim and the rest of A (far polygons of
+/// an operand not indexed, and the clipped ones), then B's likewise (the order the polygons had
+/// before the cores were taken out), B's polygons flipped with `flip_b`; with the index of the
+/// cores and rims, if any.
+pub(super) fn assemble(
+    (mut a, a_rest): (Far, Vec<Polygon>),
+    (mut b, b_rest): (Far, Vec<Polygon>),
+    flip_b: bool,
+) -> (Vec<Polygon>, Option<Indexed>) {
+    let total = a.polygons.len() + a_rest.len() + b.polygons.len() + b_rest.len();
+    let core = a.core + b.core;
+    let vertex_count = a.vertex_count + b.vertex_count;
+    let offset = a.vertex_count;
+    let [a_core, a_rim, a_plain] = a.parts();
+    let [b_core, b_rim, b_plain] = b.parts();
+    let (a_split, b_split) = (corner_count(&a_core), corner_count(&b_core));
+    let mut polygons = Vec::with_capacity(total);
+    let mut ids = Vec::with_capacity(a.ids.len() + b.ids.len());
+    let mut rim = Vec::with_capacity(a_rim.len() + b_rim.len());
+    // B's polygons with their ids past A's, both reversed when B is flipped.
+    let push_b = |polygons: &mut Vec<Polygon>, ids: &mut Vec<u32>, part: Vec<Polygon>, at| {
+        let mut at = at;
+        for mut p in part {
+            let n = p.vertices().len();
+            let ring = b.ids[at..at + n].iter().map(|&i| i + offset);
+            at += n;
+            if flip_b {
+                p.flip();
+                ids.extend(ring.rev());
+            } else {
+                ids.extend(ring);
+            }
+            polygons.push(p);
+        }
+    };
+    polygons.extend(a_core);
+    ids.extend_from_slice(&a.ids[..a_split]);
+    push_b(&mut polygons, &mut ids, b_core, 0);
+    rim.extend(polygons.len() as u32..(polygons.len() + a_rim.len()) as u32);
+    polygons.extend(a_rim);
+    ids.extend_from_slice(&a.ids[a_split..]);
+    polygons.extend(a_plain);
+    polygons.extend(a_rest);
+    rim.extend(polygons.len() as u32..(polygons.len() + b_rim.len()) as u32);
+    push_b(&mut polygons, &mut ids, b_rim, b_split);
+    for mut p in b_plain.into_iter().chain(b_rest) {
+        if flip_b {
+            p.flip();
+        }
+        polygons.push(p);
+    }
+    let index = (core > 0).then_some(Indexed {
+        core,
+        rim,
+        ids,
+        vertex_count,
+    });
+    (polygons, index)
+}
+
+impl Far {
+    /// The core, the rim and the rest, taken out.
+    fn parts(&mut self) -> [Vec<Polygon>; 3] {
+        let mut core = std::mem::take(&mut self.polygons);
+        let plain = core.split_off(self.core + self.rim);
+        let rim = core.split_off(self.core);
+        [core, rim, plain]
+    }
+}
+
+fn corner_count(polygons: &[Polygon]) -> usize {
+    polygons.iter().map(|p| p.vertices().len()).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use crate::mesh::repair::indexed_pass_closes;
+    use crate::solid::{BoolOp, Solid, boolean};
+
+    /// The indexed result against the same polygons repaired as a soup: both closed 2-manifolds
+    /// of the same volume and triangle count, and the indexed one really passed a core through.
+    fn same_as_soup(a: &Solid, b: &Solid, op: BoolOp) {
+        let indexed = boolean(a, b, op);
+        let index = indexed.index().expect("indexed");
+        assert!(index.core > 0, "{op}: no core passed through");
+        let eps = indexed.carried_eps();
+        assert!(
+            indexed_pass_closes(indexed.polygons(), eps, index),
+            "{op}: fell back"
+        );
+        let soup = Solid::with_eps(indexed.polygons().to_vec(), indexed.carried_eps(), None);
+        let (fast, full) = (indexed.to_mesh(), soup.to_mesh());
+        assert!(
+            fast.report().is_closed_manifold(),
+            "{op}: {:?}",
+            fast.report()
+        );
+        assert!(full.report().is_closed_manifold());
+        assert_eq!(fast.triangle_count(), full.triangle_count(), "{op}");
+        assert!((fast.volume() - full.volume()).abs() < 1e-9 * full.volume().abs().max(1.0));
+        // Each triangle keeps its source.
+        assert_eq!(fast.sources.len(), fast.triangle_count());
+    }
+
+    #[test]
+    fn primitives_pass_their_far_part_through() {
+        let sphere = Solid::sphere(1.0, 32, 16).unwrap();
+        let moved = sphere
+            .clone()
+            .translate(DVec3::new(0.5, 0.1, 0.05))
+            .unwrap();
+        for op in BoolOp::ALL {
+            same_as_soup(&sphere, &moved, op);
+        }
+        let cube = Solid::cube(2.0).unwrap().with_source(1);
+        same_as_soup(&cube, &sphere.clone().with_source(2), BoolOp::Difference);
+    }
+
+    #[test]
+    fn meshes_pass_their_far_part_through() {
+        let a = Solid::from_mesh(&Solid::sphere(1.0, 48, 24).unwrap().to_mesh()).unwrap();
+        let b = a.clone().translate(DVec3::new(0.3, 0.4, 0.0)).unwrap();
+        for op in BoolOp::ALL {
+            same_as_soup(&a, &b, op);
+        }
+    }
+
+    #[test]
+    fn a_boolean_of_booleans_is_not_indexed_where_its_operands_were_cut() {
+        let s = Solid::sphere(1.0, 24, 12).unwrap();
+        let ab = boolean(&s, &s.clone().translate(DVec3::X).unwrap(), BoolOp::Union);
+        // `ab` carries a tolerance: its far part may hold T-junctions and is not indexed.
+        let c = Solid::cube(0.5).unwrap();
+        let out = boolean(&ab, &c, BoolOp::Difference);
+        assert!(out.to_mesh().report().is_closed_manifold());
+        assert!(out.flipped().index().is_none());
+    }
+}
