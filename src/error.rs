@@ -240,6 +240,8 @@ pub enum MeshDefect {
     SelfIntersecting {
         /// Pairs of triangles that cross.
         pairs: usize,
+        /// True when the search stopped at `MAX_CROSSING_PAIRS` and there may be more.
+        more: bool,
         /// The first pair.
         first: [usize; 2],
     },
@@ -249,6 +251,8 @@ pub enum MeshDefect {
     ShellCrossesItself {
         /// Pairs of triangles of one shell that cross.
         pairs: usize,
+        /// True when the search stopped at `MAX_CROSSING_PAIRS` and there may be more.
+        more: bool,
         /// The first pair.
         first: [usize; 2],
     },
@@ -346,19 +350,23 @@ impl fmt::Display for MeshDefect {
                 "faces that repeat a vertex index: {faces} (first: face {first_face} = {indices:?})"
             ),
             MeshDefect::ZeroAreaFace { face } => write!(f, "face {face} has no area"),
-            MeshDefect::SelfIntersecting { pairs, first } => write!(
+            MeshDefect::SelfIntersecting { pairs, more, first } => write!(
                 f,
-                "self-intersecting: {pairs} pairs of triangles cross (first: triangles {} and \
+                "self-intersecting: {} pairs of triangles cross (first: triangles {} and \
                  {}); overlapping shells bound no solid: unite them first, or give them as \
                  separate inputs",
-                first[0], first[1]
+                pair_count(*pairs, *more),
+                first[0],
+                first[1]
             ),
-            MeshDefect::ShellCrossesItself { pairs, first } => write!(
+            MeshDefect::ShellCrossesItself { pairs, more, first } => write!(
                 f,
-                "self-intersecting within a shell: {pairs} pairs of triangles of one shell cross \
+                "self-intersecting within a shell: {} pairs of triangles of one shell cross \
                  (first: triangles {} and {}); a shell through itself has no inside, so the \
                  shells cannot be united",
-                first[0], first[1]
+                pair_count(*pairs, *more),
+                first[0],
+                first[1]
             ),
             MeshDefect::AllZeroArea { triangles, reach } => write!(
                 f,
@@ -403,6 +411,15 @@ impl fmt::Display for MeshDefect {
 
 /// `x.obj is not closed: …` / `x.obj is inside out: …` where the defect says what the mesh is,
 /// `x.obj is not a valid solid: …` for the rest; the bare defect without a file.
+/// A count of crossing pairs, "at least" where the search stopped early.
+fn pair_count(pairs: usize, more: bool) -> String {
+    if more {
+        format!("at least {pairs}")
+    } else {
+        pairs.to_string()
+    }
+}
+
 fn mesh_message(path: Option<&PathBuf>, defect: &MeshDefect) -> String {
     match path {
         None => defect.to_string(),

@@ -12,6 +12,7 @@ use bspcsg::{
     Error, Format, FromMeshOptions, Material, Mesh, MeshDefect, Solid, read_mesh, read_mesh_as,
     read_solid, write_mesh, write_mesh_as,
 };
+use common::hostile::{tetra_buffer, tetra_gltf};
 use common::models;
 use glam::DVec3;
 
@@ -256,48 +257,6 @@ fn hand_written_ascii_stl() {
     assert!((m.volume() - 1.0 / 6.0).abs() < 1e-15);
 }
 
-/// A unit tetrahedron as a glTF buffer: 4 float32 positions, then 12 u16 indices.
-fn tetra_buffer() -> Vec<u8> {
-    let mut b = Vec::new();
-    for p in [
-        [0.0f32, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.0, 0.0, 1.0],
-    ] {
-        for x in p {
-            b.extend_from_slice(&x.to_le_bytes());
-        }
-    }
-    for i in [0u16, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3] {
-        b.extend_from_slice(&i.to_le_bytes());
-    }
-    b
-}
-
-/// glTF JSON for the tetrahedron under `nodes` (a JSON array text) with the buffer at `uri`.
-fn tetra_gltf(uri: &str, nodes: &str, scene_nodes: &str) -> String {
-    format!(
-        r#"{{
-  "asset": {{"version": "2.0"}},
-  "scene": 0,
-  "scenes": [{{"nodes": {scene_nodes}}}],
-  "nodes": {nodes},
-  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1}}]}}],
-  "accessors": [
-    {{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
-      "min": [0, 0, 0], "max": [1, 1, 1]}},
-    {{"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}}
-  ],
-  "bufferViews": [
-    {{"buffer": 0, "byteOffset": 0, "byteLength": 48}},
-    {{"buffer": 0, "byteOffset": 48, "byteLength": 24}}
-  ],
-  "buffers": [{{"byteLength": 72, "uri": "{uri}"}}]
-}}"#
-    )
-}
-
 #[test]
 fn gltf_node_transforms_and_mirroring() {
     let dir = scratch("gltf_transform");
@@ -305,7 +264,7 @@ fn gltf_node_transforms_and_mirroring() {
     let uri = "tetra%20data.bin";
 
     let plain = dir.join("plain.gltf");
-    fs::write(&plain, tetra_gltf(uri, r#"[{"mesh": 0}]"#, "[0]")).unwrap();
+    fs::write(&plain, tetra_gltf(uri, 72, r#"[{"mesh": 0}]"#, "[0]")).unwrap();
     let m = read_mesh(&plain).unwrap();
     assert_eq!(m.triangle_count(), 4);
     assert!((m.volume() - 1.0 / 6.0).abs() < 1e-15);
@@ -318,7 +277,7 @@ fn gltf_node_transforms_and_mirroring() {
         {"mesh": 0, "matrix": [-1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,5,1]}
     ]"#;
     let mirrored = dir.join("mirrored.gltf");
-    fs::write(&mirrored, tetra_gltf(uri, nodes, "[0]")).unwrap();
+    fs::write(&mirrored, tetra_gltf(uri, 72, nodes, "[0]")).unwrap();
     let m = read_mesh(&mirrored).unwrap();
     assert_eq!(m.triangle_count(), 8);
     assert_eq!(m.vertex_count(), 8);
@@ -340,7 +299,7 @@ fn gltf_embedded_buffer_and_glb_without_indices() {
     let data = base64::engine::general_purpose::STANDARD.encode(tetra_buffer());
     let p = dir.join("embedded.gltf");
     let uri = format!("data:application/octet-stream;base64,{data}");
-    fs::write(&p, tetra_gltf(&uri, r#"[{"mesh": 0}]"#, "[0]")).unwrap();
+    fs::write(&p, tetra_gltf(&uri, 72, r#"[{"mesh": 0}]"#, "[0]")).unwrap();
     let m = read_mesh(&p).unwrap();
     assert_eq!(m.triangle_count(), 4);
 
@@ -398,7 +357,7 @@ fn gltf_lines_are_unsupported() {
     let dir = scratch("gltf_lines");
     fs::write(dir.join("t.bin"), tetra_buffer()).unwrap();
     let p = dir.join("lines.gltf");
-    let text = tetra_gltf("t.bin", r#"[{"mesh": 0}]"#, "[0]")
+    let text = tetra_gltf("t.bin", 72, r#"[{"mesh": 0}]"#, "[0]")
         .replace(r#""indices": 1}"#, r#""indices": 1, "mode": 1}"#);
     fs::write(&p, text).unwrap();
     assert!(matches!(read_mesh(&p), Err(Error::Unsupported { .. })));
@@ -410,7 +369,7 @@ fn gltf_cycle_and_bad_indices_are_errors() {
     fs::write(dir.join("t.bin"), tetra_buffer()).unwrap();
     let p = dir.join("cycle.gltf");
     let nodes = r#"[{"mesh": 0, "children": [1]}, {"children": [0]}]"#;
-    fs::write(&p, tetra_gltf("t.bin", nodes, "[0]")).unwrap();
+    fs::write(&p, tetra_gltf("t.bin", 72, nodes, "[0]")).unwrap();
     assert!(matches!(read_mesh(&p), Err(Error::Parse { .. })));
 
     // Index 9 of 4 vertices.
@@ -418,7 +377,7 @@ fn gltf_cycle_and_bad_indices_are_errors() {
     buf[48..50].copy_from_slice(&9u16.to_le_bytes());
     fs::write(dir.join("t.bin"), &buf).unwrap();
     let p = dir.join("index.gltf");
-    fs::write(&p, tetra_gltf("t.bin", r#"[{"mesh": 0}]"#, "[0]")).unwrap();
+    fs::write(&p, tetra_gltf("t.bin", 72, r#"[{"mesh": 0}]"#, "[0]")).unwrap();
     let e = read_mesh(&p).unwrap_err().to_string();
     assert!(e.contains("vertex 9"), "{e}");
 

@@ -132,6 +132,7 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
         if let Some(&(t, u)) = crossing.first() {
             return Err(Error::mesh(MeshDefect::SelfIntersecting {
                 pairs: crossing.len(),
+                more: crossing.len() >= super::self_intersect::MAX_CROSSING_PAIRS,
                 first: [t as usize, u as usize],
             }));
         }

@@ -146,7 +146,9 @@ impl Mesh {
     /// other's interior counts, and so do two triangles in one plane facing the same way whose
     /// interiors overlap (shells meeting only in shared planes; a triangle and its copy);
     /// triangles that only touch (along an edge, at a point, face to face facing opposite
-    /// ways) do not.
+    /// ways) do not. Triangles of zero area have no interior and cross nothing. At most
+    /// [`MAX_CROSSING_PAIRS`] pairs are found (which ones is then not fixed), so a hostile
+    /// file costs bounded time and memory.
     /// [`crate::Solid::from_mesh`] refuses a closed mesh that has any.
     #[must_use]
     pub fn crossing_triangle_pairs(&self) -> Vec<[u32; 2]> {
@@ -201,3 +203,4 @@ pub(crate) mod weld;
 
 pub use import::FromMeshOptions;
 pub use report::{MeshReport, ShellReport};
+pub use self_intersect::MAX_CROSSING_PAIRS;

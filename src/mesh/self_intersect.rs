@@ -14,34 +14,56 @@
 //! face to face) are touching, not crossing. Triangles that share a vertex cross only in a
 //! common plane (a shell's neighbours never overlap there, so valid meshes give nothing).
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::geom::Aabb;
 use crate::geom::bvh::Bvh;
+use crate::geom::{Aabb, is_zero_area};
 
-/// The crossing pairs `(t, u)`, `t < u`, of the triangles of a mesh, in order.
+/// At most this many crossing pairs are looked for: enough to refuse a mesh and to say how
+/// badly it crosses, while a hostile file (one triangle repeated 16,384 times has 1.3·10⁸
+/// pairs) stops here instead of spending time and memory quadratic in its size.
+pub const MAX_CROSSING_PAIRS: usize = 100_000;
+
+/// The crossing pairs `(t, u)`, `t < u`, of the triangles of a mesh, in order; at most
+/// [`MAX_CROSSING_PAIRS`] of them (which ones is then not fixed). Triangles of zero area
+/// (`geom::is_zero_area`, as the import drops them) have no interior to cross and are left out,
+/// so a soup of degenerate triangles whose boxes all overlap costs no pairwise test.
 pub(crate) fn crossing_pairs(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<(u32, u32)> {
     let corners = |t: usize| triangles[t].map(|i| positions[i as usize]);
     let boxes: Vec<Aabb> = (0..triangles.len())
         .map(|t| Aabb::from_points(&corners(t)))
         .collect();
-    let bvh = Bvh::build(&boxes);
-    let mut pairs: Vec<(u32, u32)> = (0..triangles.len())
-        .into_par_iter()
+    let solid: Vec<u32> = (0..triangles.len() as u32)
+        .filter(|&t| !is_zero_area(corners(t as usize)))
+        .collect();
+    let solid_boxes: Vec<Aabb> = solid.iter().map(|&t| boxes[t as usize]).collect();
+    let bvh = Bvh::build(&solid_boxes);
+    let found_so_far = AtomicUsize::new(0);
+    let mut pairs: Vec<(u32, u32)> = solid
+        .par_iter()
         .with_min_len(1024)
-        .flat_map_iter(|t| {
+        .flat_map_iter(|&t| {
+            let t = t as usize;
             let mut found = Vec::new();
+            if found_so_far.load(Ordering::Relaxed) >= MAX_CROSSING_PAIRS {
+                return found;
+            }
             let (tri, b) = (triangles[t], boxes[t]);
             bvh.visit(
                 |node| node.overlaps(&b, 0.0),
-                |u| {
-                    let u = u as usize;
+                |k| {
+                    let u = solid[k as usize] as usize;
                     if u > t
                         && boxes[u].overlaps(&b, 0.0)
                         && cross(tri, triangles[u], corners(t), corners(u))
                     {
                         found.push((t as u32, u as u32));
+                        // Stop this triangle's walk, and the others', once enough are found.
+                        return found_so_far.fetch_add(1, Ordering::Relaxed) + 1
+                            >= MAX_CROSSING_PAIRS;
                     }
                     false
                 },
@@ -50,6 +72,7 @@ pub(crate) fn crossing_pairs(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec
         })
         .collect();
     pairs.sort_unstable();
+    pairs.truncate(MAX_CROSSING_PAIRS);
     pairs
 }
 

@@ -13,7 +13,7 @@ use crate::disjoint_sets::DisjointSets;
 use crate::error::{Error, MeshDefect, Result};
 use crate::mesh::Mesh;
 use crate::mesh::import::{FromMeshOptions, polygons_from_mesh};
-use crate::mesh::self_intersect::crossing_pairs;
+use crate::mesh::self_intersect::{MAX_CROSSING_PAIRS, crossing_pairs};
 use crate::topology::EdgeTable;
 
 use super::{BoolOp, Containment, PointClassifier, Solid, boolean_all};
@@ -48,6 +48,7 @@ pub(crate) fn union_of_shells(
     if let Some(&&(t, u)) = within.first() {
         return Err(Error::mesh(MeshDefect::ShellCrossesItself {
             pairs: within.len(),
+            more: crossing.len() >= MAX_CROSSING_PAIRS,
             first: [t as usize, u as usize],
         }));
     }

@@ -2,7 +2,7 @@
 
 use std::fmt::Write as _;
 
-use bspcsg::{MeshReport, read_mesh};
+use bspcsg::{MAX_CROSSING_PAIRS, MeshReport, read_mesh};
 
 use crate::cli::InfoArgs;
 use crate::failure::Failure;
@@ -72,7 +72,14 @@ pub(crate) fn info(args: &InfoArgs, progress: &Progress) -> Result<(), Failure> 
             report.degenerate_triangles.to_string(),
         );
         line("needles", report.needles.to_string());
-        line("crossing triangle pairs", crossing.to_string());
+        line(
+            "crossing triangle pairs",
+            if crossing >= MAX_CROSSING_PAIRS {
+                format!("{crossing} or more (the search stops there)")
+            } else {
+                crossing.to_string()
+            },
+        );
         line("components", report.shells.len().to_string());
         line("inside-out shells", report.inverted_shells.to_string());
         line(

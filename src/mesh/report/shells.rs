@@ -93,10 +93,16 @@ fn resolve_underflow(
     if tiny.is_empty() {
         return;
     }
+    // A flag per shell, not a search of `tiny`: a soup of flat triangles has a tiny shell for
+    // each, and searching the list per triangle was quadratic (1M vertices: minutes).
+    let mut is_tiny = vec![false; out.len()];
+    for &s in &tiny {
+        is_tiny[s] = true;
+    }
     let mut scaled = vec![0.0; out.len()];
     for t in (0..mesh.triangles.len()).filter(|&t| usable[t]) {
         let s = shell_of[t];
-        if !tiny.contains(&s) {
+        if !is_tiny[s] {
             continue;
         }
         let c = boxes[s].center();

@@ -1,0 +1,95 @@
+//! Small generated inputs for the hostile-input tests: a glTF tetrahedron and its buffer,
+//! boxes as files, points as flat triangles.
+
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+
+use super::{box_obj_text, obj_box_mesh};
+
+/// A unit tetrahedron as a glTF buffer: 4 float32 positions, then 12 u16 indices.
+pub fn tetra_buffer() -> Vec<u8> {
+    let mut b = Vec::new();
+    for p in [
+        [0.0f32, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+    ] {
+        for x in p {
+            b.extend_from_slice(&x.to_le_bytes());
+        }
+    }
+    for i in [0u16, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3] {
+        b.extend_from_slice(&i.to_le_bytes());
+    }
+    b
+}
+
+/// glTF JSON: one tetrahedron mesh drawn by every node of `nodes`, its buffer at `uri`.
+pub fn tetra_gltf(uri: &str, byte_length: u64, nodes: &str, scene_nodes: &str) -> String {
+    format!(
+        r#"{{
+  "asset": {{"version": "2.0"}},
+  "scene": 0,
+  "scenes": [{{"nodes": {scene_nodes}}}],
+  "nodes": {nodes},
+  "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1}}]}}],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+      "min": [0, 0, 0], "max": [1, 1, 1]}},
+    {{"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"}}
+  ],
+  "bufferViews": [
+    {{"buffer": 0, "byteOffset": 0, "byteLength": 48}},
+    {{"buffer": 0, "byteOffset": 48, "byteLength": 24}}
+  ],
+  "buffers": [{{"byteLength": {byte_length}, "uri": "{uri}"}}]
+}}"#
+    )
+}
+
+/// A closed box mesh written to `path` in the format its extension names.
+pub fn box_file(path: &Path, min: f64) -> PathBuf {
+    let m = obj_box_mesh(
+        bspcsg::glam::DVec3::splat(min),
+        bspcsg::glam::DVec3::splat(min + 1.0),
+    );
+    bspcsg::write_mesh(path, &m, &[]).unwrap();
+    path.to_path_buf()
+}
+
+/// One OBJ of several boxes, `(min, max, cavity)`: a cavity's faces wind inward.
+pub fn boxes_obj(boxes: &[([f64; 3], [f64; 3], bool)]) -> String {
+    let mut text = String::new();
+    for (k, &(min, max, cavity)) in boxes.iter().enumerate() {
+        for line in box_obj_text(min, max).lines() {
+            match line.strip_prefix("f ") {
+                Some(f) => {
+                    let mut idx: Vec<String> = f
+                        .split_whitespace()
+                        .map(|i| (i.parse::<usize>().unwrap() + 8 * k).to_string())
+                        .collect();
+                    if cavity {
+                        idx.reverse();
+                    }
+                    text += &format!("f {}\n", idx.join(" "));
+                }
+                None => text += &format!("{line}\n"),
+            }
+        }
+    }
+    text
+}
+
+/// OBJ text of `points` as vertices, each three a triangle.
+pub fn points_obj(points: &[[f64; 3]]) -> String {
+    let mut s = String::with_capacity(points.len() * 60);
+    for p in points {
+        s += &format!("v {:?} {:?} {:?}\n", p[0], p[1], p[2]);
+    }
+    for k in (0..points.len() - 2).step_by(3) {
+        s += &format!("f {} {} {}\n", k + 1, k + 2, k + 3);
+    }
+    s
+}

@@ -1,0 +1,334 @@
+//! Hostile and extreme geometry on the command line: results that are right or refused with
+//! exit 2 (a tiny cube at a corner, a sphere less itself turned a hair) and overlapping or
+//! self-crossing shells refused or united when asked (issue 12).
+
+mod common;
+
+use std::ffi::OsStr;
+use std::fs;
+use std::path::Path;
+
+use bspcsg::read_mesh;
+use common::box_obj_text;
+use common::hostile::boxes_obj;
+use common::run::{Scratch, bspcsg};
+
+#[test]
+fn a_tiny_cube_at_a_unit_cube_corner_never_gives_a_broken_result_with_success() {
+    let dir = Scratch::new("tiny-corner");
+    let unit = dir.path("unit.obj");
+    fs::write(&unit, box_obj_text([0.0; 3], [1.0; 3])).unwrap();
+    for s in [1e-20, 1e-60, 1e-100] {
+        let tiny = dir.path(&format!("tiny{s:e}.obj"));
+        fs::write(&tiny, box_obj_text([-s; 3], [0.0; 3])).unwrap();
+        for op in ["union", "difference"] {
+            let out = dir.path(&format!("{op}{s:e}.obj"));
+            let run = bspcsg([
+                op.as_ref(),
+                unit.as_os_str(),
+                tiny.as_os_str(),
+                "-o".as_ref(),
+                out.as_os_str(),
+            ]);
+            // Either right (closed, the unit cube's volume) or refused with exit 2 and nothing
+            // written: never exit 0 with an open mesh.
+            if run.code == 0 {
+                let report = read_mesh(&out).unwrap().report();
+                assert!(report.is_closed_manifold(), "{op} {s:e}: {report}");
+                assert!((report.volume - 1.0).abs() < 1e-12, "{op} {s:e}: {report}");
+            } else {
+                let run = run.code(2);
+                assert!(
+                    run.stderr.contains("not a closed 2-manifold"),
+                    "{}",
+                    run.stderr
+                );
+                assert!(!out.exists(), "{op} {s:e}: nothing is written");
+            }
+        }
+    }
+}
+
+/// Item 10: a sphere less itself turned 10⁻⁴° about a tilted axis. Its facets cross their
+/// twins at 1.7·10⁻⁶ rad, which the kernel does not yet resolve (issue 11: slits and flat
+/// shells). The promise still holds: the right answer (closed, the volume of the slivers, never
+/// negative), or exit 2 saying why and nothing written.
+#[test]
+fn a_sphere_less_itself_turned_a_hair_is_right_or_refused() {
+    let dir = Scratch::new("sphere-turned");
+    let sphere = bspcsg::Solid::sphere(1.0, 32, 16).unwrap();
+    let turned = sphere
+        .clone()
+        .rotate_axis_angle(bspcsg::glam::DVec3::new(0.3, 1.0, 0.2), 1e-4)
+        .unwrap();
+    let (a, b) = (dir.path("a.obj"), dir.path("b.obj"));
+    bspcsg::write_mesh(&a, &sphere.to_mesh(), &[]).unwrap();
+    bspcsg::write_mesh(&b, &turned.to_mesh(), &[]).unwrap();
+    let out = dir.path("out.obj");
+    let run = bspcsg([
+        "difference".as_ref(),
+        a.as_os_str(),
+        b.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ]);
+    if run.code == 0 {
+        let report = read_mesh(&out).unwrap().report();
+        assert!(report.is_closed_manifold(), "{report}");
+        // The slivers between a sphere and its turned twin: at most the facets' tilt (1.7e-6
+        // rad) times the sphere's area.
+        assert!(report.volume >= 0.0 && report.volume < 1e-4, "{report}");
+    } else {
+        let run = run.code(2);
+        assert!(
+            run.stderr.contains("not a closed 2-manifold"),
+            "{}",
+            run.stderr
+        );
+        assert!(!out.exists(), "nothing is written");
+    }
+}
+
+#[test]
+fn overlapping_shells_are_refused_as_an_operand_and_reported_by_info() {
+    let dir = Scratch::new("overlapping-shells");
+    // Two unit cubes in one file, the second moved by (0.5, 0.25, 0.25): closed and manifold,
+    // volume 2, but the solid they bound is 1.71875.
+    let two = boxes_obj(&[
+        ([0.0; 3], [1.0; 3], false),
+        ([0.5, 0.25, 0.25], [1.5, 1.25, 1.25], false),
+    ]);
+    let shells = dir.path("shells.obj");
+    fs::write(&shells, two).unwrap();
+    let other = dir.path("other.obj");
+    fs::write(&other, box_obj_text([0.25, 0.25, -0.5], [1.25, 1.25, 0.5])).unwrap();
+    let out = dir.path("out.obj");
+    let run = bspcsg([
+        "union".as_ref(),
+        shells.as_os_str(),
+        other.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(2);
+    assert!(run.stderr.contains("self-intersecting"), "{}", run.stderr);
+    assert!(run.stderr.contains("shells.obj"), "{}", run.stderr);
+    assert!(!out.exists());
+    let info = bspcsg(["info".as_ref(), shells.as_os_str()]).ok();
+    assert!(
+        info.stdout.contains("bounds a solid                  no"),
+        "{}",
+        info.stdout
+    );
+    let pairs = read_mesh(&shells).unwrap().crossing_triangle_pairs();
+    assert!(!pairs.is_empty());
+    // Each cube alone, and the two touching along a face, are solids.
+    assert!(
+        read_mesh(&other)
+            .unwrap()
+            .crossing_triangle_pairs()
+            .is_empty()
+    );
+    let err = bspcsg::read_solid(&shells, &bspcsg::FromMeshOptions::default()).unwrap_err();
+    assert!(
+        err.to_string().contains(&format!("{} pairs", pairs.len())),
+        "{err}"
+    );
+}
+
+/// Run a boolean with `--union-shells`: the volume written, or the failed run.
+fn union_shells_volume(dir: &Scratch, inputs: &[&Path]) -> f64 {
+    let out = dir.path("united.obj");
+    let mut args: Vec<&OsStr> = vec!["union".as_ref(), "--union-shells".as_ref()];
+    args.extend(inputs.iter().map(|p| p.as_os_str()));
+    args.extend(["-o".as_ref(), out.as_os_str()]);
+    bspcsg(&args).ok();
+    let mesh = read_mesh(&out).unwrap();
+    assert!(mesh.report().is_closed_manifold(), "{}", mesh.report());
+    mesh.volume()
+}
+
+/// Overlapping shells are resolved as their union when asked (`--union-shells`,
+/// `FromMeshOptions::union_shells`), a cavity staying with the shell around it; a shell that
+/// crosses itself is refused either way, naming the crossing.
+#[test]
+fn overlapping_shells_are_united_when_asked_and_a_shell_through_itself_is_refused() {
+    let dir = Scratch::new("union-shells");
+    let a = ([0.0; 3], [1.0; 3], false);
+    let b = ([0.5, 0.25, 0.25], [1.5, 1.25, 1.25], false);
+    let shells = dir.path("shells.obj");
+    fs::write(&shells, boxes_obj(&[a, b])).unwrap();
+    let other = dir.path("other.obj");
+    fs::write(&other, box_obj_text([0.25, 0.25, -0.5], [1.25, 1.25, 0.5])).unwrap();
+    // A ∪ B = 2 − 0.5 · 0.75 · 0.75 = 1.71875; with the third box, by inclusion–exclusion
+    // 1.71875 + 1 − (0.28125 + 0.1875 − 0.09375) = 2.34375.
+    let alone = dir.path("alone.obj");
+    fs::write(&alone, box_obj_text([5.0; 3], [6.0; 3])).unwrap();
+    assert!((union_shells_volume(&dir, &[&shells, &alone]) - 2.71875).abs() < 1e-12);
+    assert!((union_shells_volume(&dir, &[&shells, &other]) - 2.34375).abs() < 1e-12);
+    let options = bspcsg::FromMeshOptions::default().with_union_shells(true);
+    let solid = bspcsg::read_solid(&shells, &options).unwrap();
+    assert!((solid.volume() - 1.71875).abs() < 1e-12);
+    // A box with a cavity [0.1, 0.9]³ (0.488 of solid), crossed by B: (A − C) ∪ B =
+    // 0.488 + 1 − (0.28125 − 0.4 · 0.65 · 0.65) = 1.37575.
+    let hollow = dir.path("hollow.obj");
+    let cavity = ([0.1; 3], [0.9; 3], true);
+    fs::write(&hollow, boxes_obj(&[a, cavity, b])).unwrap();
+    let solid = bspcsg::read_solid(&hollow, &options).unwrap();
+    assert!(
+        (solid.volume() - 1.37575).abs() < 1e-12,
+        "{}",
+        solid.volume()
+    );
+    assert!((union_shells_volume(&dir, &[&hollow, &alone]) - 2.37575).abs() < 1e-12);
+    // One shell through itself: a cube whose corner (1, 1, 1) is pulled down to
+    // (0.8, 0.8, −0.5), through its own bottom face. Closed and manifold, not a solid.
+    let folded = dir.path("folded.obj");
+    let text = box_obj_text([0.0; 3], [1.0; 3]).replacen("v 1.0 1.0 1.0", "v 0.8 0.8 -0.5", 1);
+    assert!(text.contains("v 0.8 0.8 -0.5"));
+    fs::write(&folded, &text).unwrap();
+    let mesh = read_mesh(&folded).unwrap();
+    assert!(mesh.report().closed, "{}", mesh.report());
+    let pairs = mesh.crossing_triangle_pairs();
+    assert!(!pairs.is_empty());
+    let err = bspcsg::read_solid(&folded, &options).unwrap_err();
+    assert!(
+        matches!(
+            err.mesh_defect(),
+            Some(bspcsg::MeshDefect::ShellCrossesItself { .. })
+        ),
+        "{err}"
+    );
+    let first = format!("first: triangles {} and {}", pairs[0][0], pairs[0][1]);
+    for flags in [&["--union-shells"][..], &[]] {
+        let out = dir.path("out.obj");
+        let mut args: Vec<&OsStr> = vec!["union".as_ref()];
+        args.extend(flags.iter().map(OsStr::new));
+        args.extend([
+            folded.as_os_str(),
+            alone.as_os_str(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ]);
+        let run = bspcsg(&args).code(2);
+        assert!(run.stderr.contains("folded.obj"), "{}", run.stderr);
+        assert!(run.stderr.contains(&first), "{}", run.stderr);
+        assert!(!out.exists());
+    }
+    // Without the flag, overlapping shells are refused with a hint at it.
+    let out = dir.path("out.obj");
+    let run = bspcsg([
+        "union".as_ref(),
+        shells.as_os_str(),
+        alone.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(2);
+    assert!(run.stderr.contains("--union-shells"), "{}", run.stderr);
+}
+
+/// The count `info` prints on its line `crossing triangle pairs`.
+fn info_crossing_pairs(mesh: &Path) -> usize {
+    let info = bspcsg(["info".as_ref(), mesh.as_os_str()]).ok();
+    info.stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("crossing triangle pairs"))
+        .unwrap_or_else(|| panic!("{}", info.stdout))
+        .trim()
+        .parse()
+        .unwrap()
+}
+
+/// Shells that overlap only in shared planes (no edge through a face) are found by their
+/// coplanar faces facing the same way; shells face to face (facing opposite ways) touch.
+#[test]
+fn shells_overlapping_in_shared_planes_are_refused_and_face_to_face_ones_accepted() {
+    let dir = Scratch::new("shell-planes");
+    let unit = ([0.0; 3], [1.0; 3], false);
+    let moved = dir.path("moved.obj");
+    fs::write(
+        &moved,
+        boxes_obj(&[unit, ([0.5, 0.0, 0.0], [1.5, 1.0, 1.0], false)]),
+    )
+    .unwrap();
+    let alone = dir.path("alone.obj");
+    fs::write(&alone, box_obj_text([5.0; 3], [6.0; 3])).unwrap();
+    assert!(info_crossing_pairs(&moved) > 0);
+    let out = dir.path("out.obj");
+    let run = bspcsg([
+        "union".as_ref(),
+        moved.as_os_str(),
+        alone.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(2);
+    assert!(run.stderr.contains("self-intersecting"), "{}", run.stderr);
+    assert!(run.stderr.contains("moved.obj"), "{}", run.stderr);
+    assert!(!out.exists());
+    // As their union: 1.5, and 2.5 with the far box.
+    let options = bspcsg::FromMeshOptions::default().with_union_shells(true);
+    assert_eq!(bspcsg::read_solid(&moved, &options).unwrap().volume(), 1.5);
+    assert_eq!(union_shells_volume(&dir, &[&moved, &alone]), 2.5);
+    // Stacked face to face (moved off the corners, which welding would join into edges of
+    // four faces): coplanar faces that overlap facing opposite ways touch. Volume 2.
+    let stacked = dir.path("stacked.obj");
+    let top = ([0.25, 0.25, 1.0], [1.25, 1.25, 2.0], false);
+    fs::write(&stacked, boxes_obj(&[unit, top])).unwrap();
+    assert_eq!(info_crossing_pairs(&stacked), 0);
+    let solid = bspcsg::read_solid(&stacked, &bspcsg::FromMeshOptions::default()).unwrap();
+    assert!((solid.volume() - 2.0).abs() < 1e-12, "{}", solid.volume());
+    // The same cube twice: each triangle crosses its copy; refused.
+    let twice = dir.path("twice.obj");
+    fs::write(&twice, boxes_obj(&[unit, unit])).unwrap();
+    assert!(info_crossing_pairs(&twice) >= 12);
+    let run = bspcsg([
+        "union".as_ref(),
+        twice.as_os_str(),
+        alone.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(2);
+    assert!(run.stderr.contains("twice.obj"), "{}", run.stderr);
+    assert!(!out.exists());
+}
+
+/// Two cubes touching along an edge: their union is two closed shells in memory (the edge's
+/// vertices doubled), but a mesh file joins equal positions, so read back the edge has four
+/// faces. The command says so rather than exit 0 silently with a file that fails its own
+/// report (issue 12 item 3; a cube less itself turned 10⁻³° gave such slivers).
+#[test]
+fn shells_touching_along_an_edge_are_written_with_a_warning_that_they_read_back_non_manifold() {
+    let dir = Scratch::new("edge-touch");
+    let (a, b) = (dir.path("a.obj"), dir.path("b.obj"));
+    fs::write(&a, box_obj_text([0.0; 3], [1.0; 3])).unwrap();
+    let out = dir.path("out.obj");
+    let union = || {
+        bspcsg([
+            "union".as_ref(),
+            a.as_os_str(),
+            b.as_os_str(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ])
+        .ok()
+    };
+    fs::write(&b, box_obj_text([1.0, 1.0, 0.0], [2.0, 2.0, 1.0])).unwrap();
+    let run = union();
+    assert!(
+        run.stderr
+            .contains("its shells touch along 1 edges and at 2 vertices"),
+        "{}",
+        run.stderr
+    );
+    let report = read_mesh(&out).unwrap().report();
+    assert_eq!(report.non_manifold_edges, 1, "{report}");
+    assert!((report.volume - 2.0).abs() < 1e-12, "{report}");
+    // Overlapping instead: one shell, no warning.
+    fs::write(&b, box_obj_text([0.5; 3], [1.5; 3])).unwrap();
+    let run = union();
+    assert!(!run.stderr.contains("warning"), "{}", run.stderr);
+    assert!(read_mesh(&out).unwrap().report().is_closed_manifold());
+}

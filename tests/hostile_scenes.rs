@@ -1,0 +1,337 @@
+//! Hostile and extreme scene exports: the polygon, boolean-work and outline budgets refused
+//! before any work with what to change, and parts thinner than a cell named (issue 12).
+
+mod common;
+
+use std::ffi::OsStr;
+use std::fs;
+use std::time::{Duration, Instant};
+
+use bspcsg::{Error, read_mesh};
+use common::run::{Scratch, bspcsg};
+
+#[test]
+fn scene_exports_over_the_polygon_budget_are_refused_with_a_tolerance_that_fits() {
+    let dir = Scratch::new("scene-budget");
+    let scene = dir.path("four.json");
+    let sphere = |p: [f64; 3]| {
+        format!(
+            r#"{{"kind":"sdf_primitive","pos":[{},{},{}],"data":{{"primitive_type":"sphere","radius":1}}}}"#,
+            p[0], p[1], p[2]
+        )
+    };
+    fs::write(
+        &scene,
+        format!(
+            r#"{{"op":"union","children":[{},{},{},{}]}}"#,
+            sphere([0.0; 3]),
+            sphere([0.5, 0.0, 0.0]),
+            sphere([0.0, 0.5, 0.0]),
+            sphere([0.0, 0.0, 0.5])
+        ),
+    )
+    .unwrap();
+    let out = dir.path("four.obj");
+    let t = Instant::now();
+    let run = bspcsg([
+        "export".as_ref(),
+        scene.as_os_str(),
+        "--tolerance".as_ref(),
+        "1e-6".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(1);
+    assert!(
+        t.elapsed() < Duration::from_secs(5),
+        "refused before any work"
+    );
+    assert!(run.stderr.contains("four.json"), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("polygon budget of a scene"),
+        "{}",
+        run.stderr
+    );
+    // The message names a tolerance; the library refuses the same way.
+    let s = bspcsg::Scene::from_path(&scene).unwrap();
+    let err = s
+        .to_solid(&bspcsg::TessellationOptions::with_tolerance(1e-6))
+        .unwrap_err();
+    let enough: f64 = err
+        .to_string()
+        .split("at least ")
+        .nth(1)
+        .and_then(|r| r.split(',').next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(enough > 1e-6 && enough < 1e-5, "{enough}");
+    assert!(!out.exists());
+}
+
+/// The points of a wavy ring, `[x,y]` each, for scene documents.
+fn wavy_polygon(n: u32) -> Vec<String> {
+    (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+            let r = 1.0 + 0.05 * (37.0 * a).sin();
+            format!("[{:.6},{:.6}]", r * a.cos(), r * a.sin())
+        })
+        .collect()
+}
+
+/// The marching-cubes route's outline work (grid points × polygon points evaluated at each)
+/// is estimated before sampling: one 10,000-point polygon extruded at the default 128 cells
+/// across (10⁶ grid points, 10¹⁰ edge visits) is refused at once with a cell that fits.
+#[test]
+fn a_bake_over_the_outline_budget_is_refused_with_a_cell_that_fits() {
+    let dir = Scratch::new("bake-budget");
+    let scene = dir.path("outline.json");
+    fs::write(
+        &scene,
+        format!(
+            r#"{{"kind":"sdf_scene","version":1,"tree":{{"op":"extrude","extrude_depth":1,"source_2d_sdf":{{"type":"polygon","points":[{}]}}}}}}"#,
+            wavy_polygon(10_000).join(",")
+        ),
+    )
+    .unwrap();
+    let out = dir.path("outline.obj");
+    let t = Instant::now();
+    let run = bspcsg([
+        "export".as_ref(),
+        scene.as_os_str(),
+        "--via".as_ref(),
+        "sdf".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(1);
+    assert!(
+        t.elapsed() < Duration::from_secs(5),
+        "refused before sampling"
+    );
+    for needle in [
+        "outline.json",
+        "outlines of 10000 points",
+        "budget of 4294967296",
+    ] {
+        assert!(run.stderr.contains(needle), "{needle}: {}", run.stderr);
+    }
+    assert!(!out.exists());
+    let s = bspcsg::Scene::from_path(&scene).unwrap();
+    let err = s.bake(&bspcsg::BakeOptions::default()).unwrap_err();
+    let (cell, enough) = match &err {
+        Error::InvalidParameter {
+            name,
+            value,
+            reason,
+        } => {
+            assert_eq!(*name, "cell");
+            let enough: f64 = reason
+                .split("a cell of at least ")
+                .nth(1)
+                .and_then(|r| r.split(',').next())
+                .unwrap()
+                .parse()
+                .unwrap();
+            (*value, enough)
+        }
+        other => panic!("{other:?}"),
+    };
+    // (10⁶ · 10⁴ / 2³²)^⅓ ≈ 1.33 times the default cell.
+    assert!(
+        enough > 1.3 * cell && enough < 1.4 * cell,
+        "{cell} {enough}"
+    );
+}
+
+/// The BSP route's boolean work (polygon corners × levels of the balanced union) is
+/// estimated before anything is tessellated: 300 references to one 10,000-point polygon and
+/// 50,000 overlapping boxes are refused at once, saying what to change; so are four unit
+/// spheres at a tolerance the polygon budget lets through, with a tolerance that fits.
+#[test]
+fn scene_exports_over_the_work_budget_are_refused_before_any_work() {
+    let dir = Scratch::new("work-budget");
+    let points = wavy_polygon(10_000);
+    let refs: Vec<String> = (0..300)
+        .map(|i| {
+            format!(
+                r#"{{"op":"extrude","source_2d_sdf":"p","extrude_depth":1,"pos":[{},{},0]}}"#,
+                0.01 * f64::from(i),
+                0.013 * f64::from(i)
+            )
+        })
+        .collect();
+    let scene = dir.path("refs.json");
+    fs::write(
+        &scene,
+        format!(
+            r#"{{"kind":"sdf_scene","version":1,"sdf_2d":{{"p":{{"type":"polygon","points":[{}]}}}},"tree":{{"op":"union","children":[{}]}}}}"#,
+            points.join(","),
+            refs.join(",")
+        ),
+    )
+    .unwrap();
+    let out = dir.path("refs.obj");
+    let t = Instant::now();
+    let run = bspcsg([
+        "export".as_ref(),
+        scene.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .code(1);
+    assert!(
+        t.elapsed() < Duration::from_secs(5),
+        "refused before any work"
+    );
+    for needle in [
+        "refs.json",
+        "300 primitives",
+        "18000000 polygon corners",
+        "budget of 16777216",
+        "2D shapes of fewer points",
+    ] {
+        assert!(run.stderr.contains(needle), "{needle}: {}", run.stderr);
+    }
+    assert!(!out.exists());
+    // 50,000 boxes in one union: 1.2 million corners over 16 levels.
+    let boxes: Vec<String> = (0..50_000)
+        .map(|i| {
+            let f = f64::from(i);
+            format!(
+                r#"{{"kind":"sdf_primitive","pos":[{},{},{}],"data":{{"primitive_type":"box","size":[1,1,1]}}}}"#,
+                (f * 0.618).fract() * 5.0,
+                (f * 0.414).fract() * 5.0,
+                (f * 0.732).fract() * 5.0
+            )
+        })
+        .collect();
+    let s = bspcsg::Scene::from_json_str(&format!(
+        r#"{{"op":"union","children":[{}]}}"#,
+        boxes.join(",")
+    ))
+    .unwrap();
+    let t = Instant::now();
+    let err = s
+        .to_solid(&bspcsg::TessellationOptions::default())
+        .unwrap_err();
+    assert!(t.elapsed() < Duration::from_secs(5));
+    assert!(
+        err.to_string().contains("about 19200000 units of work"),
+        "{err}"
+    );
+    // Four unit spheres at 2.4·10⁻⁶: within the polygon budget (4.1 million), not the work.
+    let sphere = |x: f64| {
+        format!(
+            r#"{{"kind":"sdf_primitive","pos":[{x},0,0],"data":{{"primitive_type":"sphere","radius":1}}}}"#
+        )
+    };
+    let s = bspcsg::Scene::from_json_str(&format!(
+        r#"{{"op":"union","children":[{},{},{},{}]}}"#,
+        sphere(0.0),
+        sphere(0.5),
+        sphere(1.0),
+        sphere(1.5)
+    ))
+    .unwrap();
+    let err = s
+        .to_solid(&bspcsg::TessellationOptions::with_tolerance(2.4e-6))
+        .unwrap_err();
+    let message = err.to_string();
+    assert!(message.contains("units of work"), "{message}");
+    let enough: f64 = message
+        .split("a tolerance of at least ")
+        .nth(1)
+        .and_then(|r| r.split(',').next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(enough > 2.4e-6 && enough < 1e-5, "{enough}");
+}
+
+/// A scene whose only part is thinner than a marching-cubes cell: the export says the part
+/// was lost between the grid's points and names a cell that keeps it; that cell, and the BSP
+/// route, do.
+#[test]
+fn a_part_thinner_than_a_cell_is_reported_lost_with_a_cell_that_keeps_it() {
+    let dir = Scratch::new("thin-part");
+    let scene = dir.path("sheet.json");
+    fs::write(
+        &scene,
+        r#"{"kind":"sdf_primitive","data":{"primitive_type":"box","size":[1,1,0.004]}}"#,
+    )
+    .unwrap();
+    let out = dir.path("sheet.obj");
+    let export = |extra: &[&str]| {
+        let mut args: Vec<&OsStr> = vec!["export".as_ref(), scene.as_os_str()];
+        args.extend(extra.iter().map(OsStr::new));
+        args.extend(["-o".as_ref(), out.as_os_str()]);
+        bspcsg(&args).ok()
+    };
+    let run = export(&["--via", "sdf"]);
+    assert!(run.stderr.contains("found no surface"), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("thinnest extent is 4.000e-3"),
+        "{}",
+        run.stderr
+    );
+    let cell = run
+        .stderr
+        .split("--cell ")
+        .nth(1)
+        .and_then(|r| r.split_whitespace().next())
+        .unwrap()
+        .to_owned();
+    let run = export(&["--via", "sdf", "--cell", &cell]);
+    assert!(!run.stderr.contains("found no surface"), "{}", run.stderr);
+    let volume = read_mesh(&out).unwrap().volume();
+    assert!((volume - 4e-3).abs() < 2e-3, "{volume}");
+    export(&["--via", "bsp"]);
+    assert!((read_mesh(&out).unwrap().volume() - 4e-3).abs() < 1e-12);
+}
+
+/// A box with a plate thinner than a cell beside it: the bake is not empty, and the export
+/// names the plate, by its JSON path, as thinner than the cell with a cell that keeps it,
+/// and does not name the box.
+#[test]
+fn a_thin_part_beside_a_big_one_is_named_with_a_cell_that_keeps_it() {
+    let dir = Scratch::new("thin-part-named");
+    let scene = dir.path("box-and-plate.json");
+    fs::write(
+        &scene,
+        r#"{"op":"union","children":[
+            {"kind":"sdf_primitive","data":{"primitive_type":"box","size":[1,1,1]}},
+            {"kind":"sdf_primitive","pos":[2,0,0],"data":{"primitive_type":"box","size":[1,1,0.004]}}
+        ]}"#,
+    )
+    .unwrap();
+    let out = dir.path("box-and-plate.obj");
+    let run = bspcsg([
+        "export".as_ref(),
+        scene.as_os_str(),
+        "--via".as_ref(),
+        "sdf".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .ok();
+    // The box is baked: this is the warning for a surface that is there, not an empty one.
+    assert!(!read_mesh(&out).unwrap().is_empty());
+    assert!(!run.stderr.contains("found no surface"), "{}", run.stderr);
+    let warning = run
+        .stderr
+        .lines()
+        .find(|l| l.contains("$.children[1]"))
+        .unwrap_or_else(|| panic!("the plate is not named: {}", run.stderr));
+    assert!(warning.contains("4.000e-3 thin"), "{warning}");
+    assert!(!run.stderr.contains("$.children[0]"), "{}", run.stderr);
+    let cell: f64 = warning
+        .split("--cell ")
+        .nth(1)
+        .and_then(|r| r.split_whitespace().next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(cell > 0.0 && cell < 4e-3, "{cell}");
+}
