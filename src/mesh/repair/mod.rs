@@ -91,7 +91,7 @@ pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64, index: Option<&In
 }
 
 /// [`polygons_to_mesh`], and how many repair passes it took (the indexed one included): at
-/// most `WELD_RETRIES + 4`, and at most three where more than [`WIDEN_CRACKS`] crack points are
+/// most `2 × WELD_RETRIES + 4`, and at most three where more than [`WIDEN_CRACKS`] crack points are
 /// left.
 fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (Mesh, u32) {
     if polygons.is_empty() {
@@ -112,10 +112,10 @@ fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (M
     }
     let mut wide = Wide::default();
     // First the quick pass, then the full T-junction search at the same weld.
-    let (mut mesh, mut cracks) = repair(polygons, delta, &wide, true, None);
+    let (mut mesh, mut cracks) = repair(polygons, delta, &wide, true, false, None);
     passes += 1;
     if !cracks.is_empty() {
-        (mesh, cracks) = repair(polygons, delta, &wide, false, None);
+        (mesh, cracks) = repair(polygons, delta, &wide, false, false, None);
         passes += 1;
     }
     if cracks.is_empty() {
@@ -136,17 +136,26 @@ fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (M
         reach *= 10.0;
         wide.widen(&cracks, reach);
         let mesh;
-        (mesh, cracks) = repair(polygons, delta, &wide, false, None);
+        (mesh, cracks) = repair(polygons, delta, &wide, false, false, None);
         passes += 1;
         best.consider(mesh, cracks.len());
         if best.clean || cracks.is_empty() {
+            break;
+        }
+        // Only where the weld alone leaves cracks are edges allowed their drag (see
+        // [`wide_drag`]): allowed always, it joined Havocglass8_left − _right's vertices to
+        // edges they are not on, a flat shell where the weld alone closes the mesh.
+        let (mesh, left) = repair(polygons, delta, &wide, false, true, None);
+        passes += 1;
+        best.consider(mesh, left.len());
+        if best.clean {
             break;
         }
     }
     if !best.clean {
         // What no weld closes: slits between two cut lines of faces crossing at a tiny angle,
         // filled flat on the pass before any widening (see [`cracks`]).
-        let (mesh, left) = repair(polygons, delta, &Wide::default(), false, Some(reach));
+        let (mesh, left) = repair(polygons, delta, &Wide::default(), false, false, Some(reach));
         passes += 1;
         best.consider(mesh, left.len());
     }
@@ -195,13 +204,15 @@ impl Attempt {
 
 /// One repair pass with weld tolerance `delta` (wider near the `wide` points); `quick` skips the
 /// T-junction search on edges already matched (see [`tjunction::insert_on_edges`]); with
-/// `fill_flat`, crack loops within that distance of one plane are filled before the shells are
-/// split. Returns the mesh and the end points of its cracks.
+/// `dragged`, edges whose ends a wide weld moved take vertices that much farther (see
+/// [`wide_drag`]); with `fill_flat`, crack loops within that distance of one plane are filled
+/// before the shells are split. Returns the mesh and the end points of its cracks.
 fn repair(
     polygons: &[Polygon],
     delta: f64,
     wide: &Wide,
     quick: bool,
+    dragged: bool,
     fill_flat: Option<f64>,
 ) -> (Mesh, Vec<DVec3>) {
     // Sized first: collecting a flat map grows the list by copying (10⁶ corners).
@@ -211,7 +222,11 @@ fn repair(
         corners.extend_from_slice(p.vertices());
     }
     let (positions, map) = weld_within(&corners, delta, wide);
-    let drag = wide_drag(&corners, &positions, &map, delta, wide);
+    let drag = if dragged {
+        wide_drag(&corners, &positions, &map, delta, wide)
+    } else {
+        Vec::new()
+    };
     let mut rings = Vec::with_capacity(polygons.len());
     let mut at = 0usize;
     for (i, p) in polygons.iter().enumerate() {
