@@ -16,8 +16,8 @@ use std::io::Write;
 use std::os::unix::ffi::{OsStrExt, OsStringExt};
 use std::os::unix::fs::FileTypeExt;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use super::OutFile;
 use crate::error::{Error, Result};
@@ -31,30 +31,31 @@ const NAME_MAX: usize = 255;
 /// Temporaries not yet renamed, and backups not yet dropped (with the file they back up).
 static LIVE: Mutex<Vec<(PathBuf, Option<PathBuf>)>> = Mutex::new(Vec::new());
 
-fn register(path: &Path, restores: Option<&Path>) {
-    if let Ok(mut live) = LIVE.lock() {
-        live.push((path.to_path_buf(), restores.map(Path::to_path_buf)));
-    }
+/// Files put in place by a rename since the process started.
+static COMMITTED: AtomicBool = AtomicBool::new(false);
+
+/// The list of live temporaries and backups. Every step that makes one, or renames one into
+/// place, holds it, so a signal handler that takes it sees each file either not yet made or
+/// registered, and each rename either done or never to happen.
+fn live() -> MutexGuard<'static, Vec<(PathBuf, Option<PathBuf>)>> {
+    LIVE.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
-fn unregister(path: &Path) {
-    if let Ok(mut live) = LIVE.lock()
-        && let Some(k) = live.iter().position(|(p, _)| p == path)
-    {
+fn unregister(live: &mut Vec<(PathBuf, Option<PathBuf>)>, path: &Path) {
+    if let Some(k) = live.iter().position(|(p, _)| p == path) {
         live.swap_remove(k);
     }
 }
 
 /// Removes the temporary files of every write in progress and puts back any companion file a
-/// write had replaced but not yet committed. For a handler of SIGINT or SIGTERM that runs on
-/// an ordinary thread (it takes a lock, so it is not for an asynchronous signal handler);
-/// the process should exit straight afterwards.
-pub fn cleanup_interrupted_writes() {
-    let live = match LIVE.lock() {
-        Ok(mut live) => std::mem::take(&mut *live),
-        Err(_) => return,
-    };
-    for (path, restores) in live {
+/// write had replaced but not yet committed; returns whether this process had already put any
+/// file in place. For a handler of SIGINT or SIGTERM that runs on an ordinary thread (it takes
+/// a lock, so it is not for an asynchronous signal handler); the process must exit straight
+/// afterwards: the lock stays held, so no write starts or commits after this, and one racing
+/// with it waits for the exit.
+pub fn cleanup_interrupted_writes() -> bool {
+    let mut live = live();
+    for (path, restores) in std::mem::take(&mut *live) {
         match restores {
             Some(dest) => {
                 let _ = fs::rename(&path, &dest);
@@ -64,6 +65,8 @@ pub fn cleanup_interrupted_writes() {
             }
         }
     }
+    std::mem::forget(live);
+    COMMITTED.load(Ordering::SeqCst)
 }
 
 /// `.NAME.SUFFIX` beside `dest`, with NAME cut short enough that the whole stays within
@@ -153,12 +156,14 @@ impl TempFile {
         }
         let tmp = hidden_sibling(dest, &unique_suffix("tmp"));
         // `create_new` never clobbers a stranger's file that happens to have the same name.
+        let mut live = live();
         let mut file = fs::OpenOptions::new()
             .write(true)
             .create_new(true)
             .open(&tmp)
             .map_err(io_err)?;
-        register(&tmp, None);
+        live.push((tmp.clone(), None));
+        drop(live);
         // From here on the guard removes the temporary file if anything fails.
         let guard = TempFile {
             tmp,
@@ -175,12 +180,14 @@ impl TempFile {
     }
 
     fn rename(&mut self) -> Result<()> {
+        let mut live = live();
         fs::rename(&self.tmp, &self.dest).map_err(|source| Error::Io {
             path: self.dest.clone(),
             source,
         })?;
         self.renamed = true;
-        unregister(&self.tmp);
+        COMMITTED.store(true, Ordering::SeqCst);
+        unregister(&mut live, &self.tmp);
         Ok(())
     }
 }
@@ -189,8 +196,9 @@ impl Drop for TempFile {
     fn drop(&mut self) {
         if !self.renamed {
             // Nothing more can be done about a failure here; the write already failed.
+            let mut live = live();
             let _ = fs::remove_file(&self.tmp);
-            unregister(&self.tmp);
+            unregister(&mut live, &self.tmp);
         }
     }
 }
@@ -273,16 +281,18 @@ pub(crate) fn write_atomically(files: &[OutFile]) -> Result<()> {
     match result {
         Ok(()) => {
             for b in backups {
+                let mut live = live();
                 let _ = fs::remove_file(&b.copy);
-                unregister(&b.copy);
+                unregister(&mut live, &b.copy);
             }
             Ok(())
         }
         Err(e) => {
             // Restore the companions the old main file refers to; drop new ones.
             for b in backups {
+                let mut live = live();
                 let _ = fs::rename(&b.copy, &b.dest);
-                unregister(&b.copy);
+                unregister(&mut live, &b.copy);
             }
             for c in created {
                 let _ = fs::remove_file(c);
@@ -306,13 +316,14 @@ impl Backup {
             return Ok(None);
         }
         let copy = hidden_sibling(dest, &unique_suffix("old"));
+        let mut live = live();
         fs::hard_link(dest, &copy)
             .or_else(|_| fs::copy(dest, &copy).map(|_| ()))
             .map_err(|source| Error::Io {
                 path: dest.to_path_buf(),
                 source,
             })?;
-        register(&copy, Some(dest));
+        live.push((copy.clone(), Some(dest.to_path_buf())));
         Ok(Some(Backup {
             dest: dest.to_path_buf(),
             copy,

@@ -48,9 +48,10 @@ use output::print_stderr;
 use progress::Progress;
 
 /// SIGINT, SIGTERM and SIGHUP are taken by a thread of their own: it removes the temporary
-/// files of a write in progress (putting back a companion already replaced) and the
-/// directories made for the output, then exits 128 + the signal's number (130 for SIGINT, 143
-/// for SIGTERM), as a shell reports a process that a signal ended.
+/// files of a write in progress (putting back a companion already replaced) and, unless the
+/// output was already renamed into place, the directories made for it, then exits 128 + the
+/// signal's number (130 for SIGINT, 143 for SIGTERM), as a shell reports a process that a
+/// signal ended.
 fn handle_signals() {
     use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
     let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) else {
@@ -58,9 +59,13 @@ fn handle_signals() {
     };
     std::thread::spawn(move || {
         if let Some(sig) = signals.forever().next() {
-            bspcsg::cleanup_interrupted_writes();
-            output::remove_made_dirs();
-            print_stderr("bspcsg: interrupted; no output written");
+            if bspcsg::cleanup_interrupted_writes() {
+                // The output was already in place: it is whole, and it stays.
+                print_stderr("bspcsg: interrupted after the output was written");
+            } else {
+                output::remove_made_dirs_before_exit();
+                print_stderr("bspcsg: interrupted; no output written");
+            }
             std::process::exit(128 + sig);
         }
     });

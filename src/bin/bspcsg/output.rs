@@ -5,7 +5,7 @@
 use std::collections::HashMap;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use bspcsg::glam::DVec3;
 use bspcsg::{Format, Material, Mesh, MeshReport, write_mesh_as};
@@ -42,21 +42,30 @@ pub(crate) fn output_target(args: &OutputArgs) -> Result<(&Path, Format), Failur
 /// Directories made for an output not yet written, for the signal handler to remove.
 static MADE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
-/// Removes the directories made for an output whose write was interrupted, innermost first.
-pub(crate) fn remove_made_dirs() {
-    if let Ok(mut made) = MADE.lock() {
-        remove_dirs(&std::mem::take(&mut *made));
-    }
+fn made() -> MutexGuard<'static, Vec<PathBuf>> {
+    MADE.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// Removes the directories made for an output whose write failed, innermost first.
+fn remove_made_dirs() {
+    remove_dirs(&std::mem::take(&mut *made()));
+}
+
+/// For the signal handler: removes the directories made for the output and keeps the list
+/// locked, so that none is made between this and the process's exit.
+pub(crate) fn remove_made_dirs_before_exit() {
+    let mut made = made();
+    remove_dirs(&std::mem::take(&mut *made));
+    std::mem::forget(made);
 }
 
 /// The output is written: its directories stay.
 fn keep_made_dirs() {
-    if let Ok(mut made) = MADE.lock() {
-        made.clear();
-    }
+    made().clear();
 }
 
 /// Creates the missing directories above `out`, returning those it made, outermost first.
+/// Each is made and listed under one lock, so a signal handler never misses one.
 pub(crate) fn make_parents(out: &Path) -> Result<Vec<PathBuf>, Failure> {
     let mut missing: Vec<PathBuf> = out
         .ancestors()
@@ -65,20 +74,16 @@ pub(crate) fn make_parents(out: &Path) -> Result<Vec<PathBuf>, Failure> {
         .map(Path::to_path_buf)
         .collect();
     missing.reverse();
+    let mut made = made();
     for d in &missing {
-        let made = std::fs::create_dir(d);
-        if made.is_ok()
-            && let Ok(mut list) = MADE.lock()
-        {
-            list.push(d.clone());
-        }
-        if let Err(e) = made {
-            remove_made_dirs();
+        if let Err(e) = std::fs::create_dir(d) {
+            remove_dirs(&std::mem::take(&mut *made));
             return Err(Failure::usage_or_io(format!(
                 "{}: cannot create the output's directory: {e}",
                 d.display()
             )));
         }
+        made.push(d.clone());
     }
     Ok(missing)
 }
