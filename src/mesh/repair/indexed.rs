@@ -3,13 +3,12 @@
 //! searched for T-junctions and regrouped.
 
 use glam::DVec3;
-use smallvec::SmallVec;
 
-use super::{Ring, regions, shells, spans_area, tjunction};
+use super::{regions, rings_of, shells, tjunction};
 use crate::geom::is_zero_area;
 use crate::mesh::Mesh;
 use crate::mesh::weld::{Wide, weld_within};
-use crate::polygon::{Polygon, dedup_ring};
+use crate::polygon::Polygon;
 
 /// What a boolean knows of its output's topology: the polygons it passed through whole, with
 /// one vertex id per corner (equal ids are equal positions, bit for bit).
@@ -76,20 +75,7 @@ pub(super) fn repair(
             pinned[*v as usize] = true;
         }
     }
-    let mut rings = Vec::with_capacity(rest.len());
-    let mut at = 0usize;
-    for (i, p) in rest.iter().enumerate() {
-        let n = p.vertices().len();
-        let mut verts: SmallVec<[u32; 8]> = map[at..at + n].iter().copied().collect();
-        at += n;
-        dedup_ring(&mut verts);
-        if verts.len() >= 3 && spans_area(&positions, &verts, p, delta) {
-            rings.push(Ring {
-                verts,
-                polygon: (index.core + i) as u32,
-            });
-        }
-    }
+    let mut rings = rings_of(rest, &map, &positions, delta, index.core);
     // The core's edges between two welded vertices: the rim's edges across them are matched.
     let mut seam: Vec<(u32, u32)> = Vec::new();
     let mut at = 0usize;

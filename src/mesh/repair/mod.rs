@@ -227,20 +227,7 @@ fn repair(
     } else {
         Vec::new()
     };
-    let mut rings = Vec::with_capacity(polygons.len());
-    let mut at = 0usize;
-    for (i, p) in polygons.iter().enumerate() {
-        let n = p.vertices().len();
-        let mut verts: SmallVec<[u32; 8]> = map[at..at + n].iter().copied().collect();
-        at += n;
-        dedup_ring(&mut verts);
-        if verts.len() >= 3 && spans_area(&positions, &verts, p, delta) {
-            rings.push(Ring {
-                verts,
-                polygon: i as u32,
-            });
-        }
-    }
+    let mut rings = rings_of(polygons, &map, &positions, delta, 0);
     tjunction::insert_on_edges(&positions, &drag, &mut rings, delta, wide, quick, &[]);
     let pinned = vec![false; positions.len()];
     let mut triangles = regions::triangulate_regions(&positions, &rings, polygons, delta, &pinned);
@@ -280,6 +267,32 @@ fn wide_drag(
         }
     }
     drag
+}
+
+/// The rings of `polygons` through the weld `map` of their corners in order, numbered from
+/// `first`; rings that welding emptied or flattened (see [`spans_area`]) are left out.
+fn rings_of(
+    polygons: &[Polygon],
+    map: &[u32],
+    positions: &[DVec3],
+    delta: f64,
+    first: usize,
+) -> Vec<Ring> {
+    let mut rings = Vec::with_capacity(polygons.len());
+    let mut at = 0usize;
+    for (i, p) in polygons.iter().enumerate() {
+        let n = p.vertices().len();
+        let mut verts: SmallVec<[u32; 8]> = map[at..at + n].iter().copied().collect();
+        at += n;
+        dedup_ring(&mut verts);
+        if verts.len() >= 3 && spans_area(positions, &verts, p, delta) {
+            rings.push(Ring {
+                verts,
+                polygon: (first + i) as u32,
+            });
+        }
+    }
+    rings
 }
 
 /// False when welding collapsed the ring onto a line (width below `delta` everywhere).
