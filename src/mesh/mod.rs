@@ -204,7 +204,7 @@ impl Mesh {
     /// ```
     /// use bspcsg::{Solid, glam::DVec3};
     /// let a = Solid::cube(1.0).unwrap();
-    /// let b = a.translate(DVec3::new(1.0, 1.0, 0.0)).unwrap();
+    /// let b = a.clone().translate(DVec3::new(1.0, 1.0, 0.0)).unwrap();
     /// let mesh = a.union(&b).to_mesh();
     /// assert!(mesh.report().is_closed_manifold());
     /// let back = mesh.as_read_back().expect("the edge's ends share positions");
