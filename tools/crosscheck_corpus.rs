@@ -14,7 +14,8 @@
 //! volume and area; A ∪ A, A ∩ A, A − A; and, when the shared models are found (`--models`
 //! or the environment variable `BSPCSG_MODELS`), the real meshes with moved copies of
 //! themselves, with primitives cutting through them, with themselves, and in their given
-//! pairs. `--quick` keeps a handful of cases per category (for trying the harness).
+//! pairs; and solids touching along an edge or at a corner, as operands and as results.
+//! `--quick` keeps a handful of cases per category (for trying the harness).
 //!
 //! The random numbers come from a fixed-seed LCG, so the corpus is the same on every run.
 
