@@ -161,7 +161,7 @@ fn scene_exports_over_the_work_budget_are_refused_before_any_work() {
     )
     .unwrap();
     let out = dir.path("refs.obj");
-    export_refused_at_once(
+    let run = export_refused_at_once(
         &[scene.as_os_str()],
         &out,
         &[
@@ -170,8 +170,12 @@ fn scene_exports_over_the_work_budget_are_refused_before_any_work() {
             "18000000 polygon corners",
             "budget of 16777216",
             "2D shapes of fewer points",
+            // No tolerance was given and none would help: the refusal names the scene, not an
+            // option.
+            "refs.json: $: the scene's 300 primitives",
         ],
     );
+    assert!(!run.stderr.contains("tolerance` ="), "{}", run.stderr);
     // 50,000 boxes in one union: 1.2 million corners over 16 levels.
     let boxes: Vec<String> = (0..50_000)
         .map(|i| {
