@@ -78,7 +78,7 @@ fn key_of(p: &Polygon, k: usize) -> Option<Key> {
         sine(&planes[0], &planes[2]),
         sine(&planes[1], &planes[2]),
     ];
-    if s.iter().any(|&x| x == 0.0) || s.iter().all(|&x| x >= SHARE_BELOW) {
+    if s.contains(&0.0) || s.iter().all(|&x| x >= SHARE_BELOW) {
         return None;
     }
     let mut key = planes.map(|q| plane_bits(&canonical(&q)));
