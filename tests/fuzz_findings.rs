@@ -413,11 +413,11 @@ fn mesh_volume_below_the_solids_after_a_tiny_turn() {
 /// libFuzzer seed 7, artifact crash-a61c9b87…), minimised to 37 bytes: an OBJ box 1.125 on a
 /// side less a slab 1.125 × 1.125 × 0.125 at the same place, both turned 0.044° (the free turn's
 /// smallest steps) about axes 1.6e-3 apart, so their side faces are about 1.3e-6 rad off
-/// coplanar. Step 0 leaves a flat shell (2 shells, one of no volume). With the two axes equal
+/// coplanar. Step 0 left a flat shell (2 shells, one of no volume). With the two axes equal
 /// (faces exactly coplanar) it passes: the near-coplanar kind of the tiny-rotation findings,
-/// reached through the free turn.
+/// reached through the free turn. Fixed by the shared near-coplanar vertices
+/// (`polygon/shared.rs`).
 #[test]
-#[ignore = "open: near-coplanar — a flat shell where faces turned 0.044° about axes 1.6e-3 apart meet"]
 fn flat_shell_of_boxes_turned_alike_about_close_axes() {
     replay_with(
         &[
@@ -466,9 +466,9 @@ fn needle_of_a_prism_less_a_bar_turned_alike() {
 
 /// The same run (seed 10, artifact crash-99b4592a…), minimised to 74 bytes: a box united with a
 /// slab, both turned 0.044° about axes 1.2e-3 apart, then three small parts united: at step 3
-/// the mesh volume is 1.7e-9 below the solid's. Passes with the free turns made 0: near-coplanar.
+/// the mesh volume was 1.7e-9 below the solid's. Passes with the free turns made 0: near-coplanar,
+/// fixed by the shared near-coplanar vertices (`polygon/shared.rs`).
 #[test]
-#[ignore = "open: near-coplanar — mesh volume 1.7e-9 below the solid's after boxes turned alike"]
 fn mesh_volume_off_after_boxes_turned_alike_about_close_axes() {
     replay_with(
         &[
