@@ -203,67 +203,8 @@ fn gltf_instancing_over_the_triangle_budget_is_refused_quickly() {
     assert!(m.triangle_count() > 0 && m.triangle_count() <= 24_000);
 }
 
-/// The crate's former unkeyed position hash (FxHash's multiply-rotate over the bytes of
-/// `[u64; 3]`, length first), to craft positions that all land in one bucket under it.
-fn unkeyed_hash_state(state: u64, bytes: &[u8]) -> u64 {
-    bytes.iter().fold(state, |h, &b| {
-        (h.rotate_left(5) ^ u64::from(b)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95)
-    })
-}
-
-#[test]
-fn welder_hash_flooding_costs_no_more_than_random_positions() {
-    // 16384 positions whose unkeyed hashes agree in the low 13 bits (the bucket of a table
-    // sized for them), against as many random ones: the welder's keyed hash spreads both.
-    const N: usize = 16384;
-    const MASK: u64 = (1 << 13) - 1;
-    let prefix = unkeyed_hash_state(
-        0,
-        &[
-            &3usize.to_ne_bytes()[..],
-            &1.0f64.to_bits().to_le_bytes(),
-            &2.0f64.to_bits().to_le_bytes(),
-        ]
-        .concat(),
-    );
-    let mut crafted = Vec::with_capacity(N);
-    let mut k = 0u64;
-    while crafted.len() < N {
-        let z = f64::from_bits(3.0f64.to_bits() + k);
-        k += 1;
-        if unkeyed_hash_state(prefix, &z.to_bits().to_le_bytes()) & MASK == 0 {
-            crafted.push([1.0, 2.0, z]);
-        }
-    }
-    // Random positions of the same form (same text length per line).
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
-    let random: Vec<[f64; 3]> = (0..N)
-        .map(|_| {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            [1.0, 2.0, f64::from_bits(3.0f64.to_bits() + (state >> 24))]
-        })
-        .collect();
-    let dir = Scratch::new("flood");
-    let (c, r) = (dir.path("crafted.obj"), dir.path("random.obj"));
-    fs::write(&c, points_obj(&crafted)).unwrap();
-    fs::write(&r, points_obj(&random)).unwrap();
-    // Interleaved, best of 9 each: other tests share the machine.
-    let time = |p: &Path| {
-        let t = Instant::now();
-        let m = read_mesh(p).unwrap();
-        assert_eq!(m.positions.len(), N / 3 * 3);
-        t.elapsed()
-    };
-    let (mut tc, mut tr) = (Duration::MAX, Duration::MAX);
-    for _ in 0..9 {
-        tc = tc.min(time(&c));
-        tr = tr.min(time(&r));
-    }
-    eprintln!("{N} positions: crafted {tc:?}, random {tr:?}");
-    assert!(tc <= 3 * tr, "crafted {tc:?} vs random {tr:?}");
-}
+// Hash flooding (item 8) is counted, not timed, beside the welder:
+// `mesh::weld::tests::welder_hash_flooding_costs_no_more_than_random_positions`.
 
 /// One triangle repeated 16,384 times: 1.3·10⁸ crossing pairs, which took 24 s and 300 MB to
 /// list. The search stops at `MAX_CROSSING_PAIRS`, and `info` says it stopped.

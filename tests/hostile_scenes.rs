@@ -194,6 +194,14 @@ fn scene_exports_over_the_work_budget_are_refused_before_any_work() {
     ] {
         assert!(run.stderr.contains(needle), "{needle}: {}", run.stderr);
     }
+    // No tolerance was given and none would help: the refusal names the scene, not an option.
+    assert!(
+        run.stderr
+            .contains("refs.json: $: the scene's 300 primitives"),
+        "{}",
+        run.stderr
+    );
+    assert!(!run.stderr.contains("tolerance` ="), "{}", run.stderr);
     assert!(!out.exists());
     // 50,000 boxes in one union: 1.2 million corners over 16 levels.
     let boxes: Vec<String> = (0..50_000)

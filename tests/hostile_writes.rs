@@ -214,8 +214,26 @@ fn an_existing_output_keeps_its_mode_and_a_link_stays_a_link() {
 
 #[test]
 fn a_signal_during_export_leaves_no_temporary_file_or_directory() {
+    signal_during_export("TERM", 143);
+}
+
+/// Ctrl-C: as SIGTERM, exit 128 + 2.
+#[test]
+fn sigint_during_export_leaves_no_temporary_file_or_directory() {
+    signal_during_export("INT", 130);
+}
+
+/// A closed terminal: as SIGTERM, exit 128 + 1.
+#[test]
+fn sighup_during_export_leaves_no_temporary_file_or_directory() {
+    signal_during_export("HUP", 129);
+}
+
+/// Sends `signal` (a `kill -s` name) to an export at several moments: each run either
+/// finishes (exit 0, the output whole) or exits `code` with nothing of its own left behind.
+fn signal_during_export(signal: &str, code: i32) {
     use std::process::{Command, Stdio};
-    let dir = Scratch::new("signal");
+    let dir = Scratch::new(&format!("signal-{signal}"));
     let scene = dir.path("sphere.json");
     fs::write(
         &scene,
@@ -239,12 +257,12 @@ fn a_signal_during_export_leaves_no_temporary_file_or_directory() {
             .unwrap();
         std::thread::sleep(Duration::from_millis(delay_ms));
         let _ = Command::new("kill")
-            .args(["-TERM", &child.id().to_string()])
+            .args(["-s", signal, &child.id().to_string()])
             .status();
         let status = child.wait().unwrap();
         match status.code() {
             Some(0) => assert!(out.exists()),
-            Some(143) => {
+            Some(c) if c == code => {
                 interrupted += 1;
                 // A signal after the rename leaves the whole output (and its directories).
                 assert!(

@@ -14,7 +14,8 @@
 //! volume and area; A ∪ A, A ∩ A, A − A; and, when the shared models are found (`--models`
 //! or the environment variable `BSPCSG_MODELS`), the real meshes with moved copies of
 //! themselves, with primitives cutting through them, with themselves, and in their given
-//! pairs. `--quick` keeps a handful of cases per category (for trying the harness).
+//! pairs; and solids touching along an edge or at a corner, as operands and as results.
+//! `--quick` keeps a handful of cases per category (for trying the harness).
 //!
 //! The random numbers come from a fixed-seed LCG, so the corpus is the same on every run.
 
@@ -442,6 +443,83 @@ fn aligned_pairs(corpus: &mut Corpus) {
             }
         }
     }
+}
+
+/// Solids that touch along an edge or at a point, as operands and as results: the writer gives
+/// each solid its own vertices there (manifold3d loads them by index) and `read_mesh` pairs the
+/// faces around a shared edge by angle, so such files are closed solids both ways.
+fn touching(corpus: &mut Corpus) {
+    let unit = Solid::cuboid(DVec3::ONE).expect("a unit box");
+    // The unit box whose lowest corner is `at`.
+    let cell = |at: [f64; 3]| {
+        unit.clone()
+            .translate(DVec3::from(at) + 0.5)
+            .expect("a placed box")
+    };
+    let operand = |name: &str, solid: Solid, describe: &str| {
+        rc(Operand {
+            name: name.to_owned(),
+            mesh: solid.to_mesh(),
+            describe: describe.to_owned(),
+        })
+    };
+    let a = operand("touch_cube", cell([0.0; 3]), "cuboid(1) at [0,1]³");
+    let edge = operand(
+        "touch_cube_edge",
+        cell([1.0, 1.0, 0.0]),
+        "cuboid(1) at [1,2]²×[0,1] (an edge on the first's)",
+    );
+    let vertex = operand(
+        "touch_cube_vertex",
+        cell([1.0; 3]),
+        "cuboid(1) at [1,2]³ (a corner on the first's)",
+    );
+    for b in [&edge, &vertex] {
+        corpus.push(
+            "touching",
+            BoolOp::Union,
+            &a,
+            b,
+            known(2.0, Some(12.0), "analytic"),
+        );
+    }
+    // Four unit boxes of [0,2]³ in a checkerboard, one file whose every inner edge has four
+    // faces; a box across its centre takes an eighth of each.
+    let cells = [[0.0; 3], [1.0, 1.0, 0.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
+    let checker = operand(
+        "touch_checker",
+        Solid::union_all(cells.map(cell)),
+        "unit boxes at [0,0,0], [1,1,0], [1,0,1], [0,1,1] (a 2×2×2 checkerboard)",
+    );
+    let middle = operand(
+        "touch_middle",
+        unit.clone().translate(DVec3::ONE).expect("a placed box"),
+        "cuboid(1) at [0.5,1.5]³",
+    );
+    for (op, volume) in [
+        (BoolOp::Union, 4.5),
+        (BoolOp::Intersection, 0.5),
+        (BoolOp::Difference, 3.5),
+    ] {
+        corpus.push(
+            "touching",
+            op,
+            &checker,
+            &middle,
+            known(volume, None, "analytic"),
+        );
+    }
+    // A cube less itself turned 10⁻³° about (0.3, 1, 0.2): slivers touching along edges.
+    let axis = DVec3::new(0.3, 1.0, 0.2).normalize();
+    let turned = operand(
+        "touch_cube_turned",
+        unit.clone()
+            .rotate(DQuat::from_axis_angle(axis, 1e-3_f64.to_radians()))
+            .and_then(|s| s.translate(DVec3::splat(0.5)))
+            .expect("a turned box"),
+        "cuboid(1) at [0,1]³ turned 1e-3° about (0.3, 1, 0.2) through its centre",
+    );
+    corpus.push("touching", BoolOp::Difference, &a, &turned, None);
 }
 
 /// The core issue's analytic cases, disjoint unions and spheres.
@@ -883,6 +961,8 @@ fn main() -> ExitCode {
         ),
         None => "SKIPPED the model cases: set BSPCSG_MODELS or pass --models DIR".to_owned(),
     };
+    // After the models, so the numbering of the cases above stays as it was.
+    touching(&mut corpus);
     if quick {
         // A few of each category.
         let mut seen: HashMap<&str, usize> = HashMap::new();

@@ -12,6 +12,7 @@ use glam::DVec3;
 use super::parse_error;
 use crate::error::Result;
 use crate::mesh::Mesh;
+use crate::mesh::repair::split_touching;
 
 /// Triangles of welded vertex indices, those that repeat a vertex dropped and counted.
 #[derive(Default)]
@@ -38,7 +39,9 @@ impl Triangles {
         }
     }
 
-    /// The mesh of `positions` and the kept triangles.
+    /// The mesh of `positions` and the kept triangles; solids that touch along an edge or at
+    /// a point, sharing vertices once welded, are given vertices of their own again (as
+    /// `to_mesh` wrote them), so that a file of them reads back as closed shells.
     ///
     /// # Errors
     ///
@@ -56,6 +59,7 @@ impl Triangles {
                 ),
             ));
         }
-        Ok(Mesh::new(positions, self.kept))
+        let mesh = Mesh::new(positions, self.kept);
+        Ok(split_touching(&mesh).unwrap_or(mesh))
     }
 }

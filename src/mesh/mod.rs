@@ -192,6 +192,54 @@ impl Mesh {
             .map(|[a, b, c]| 0.5 * (b - a).cross(c - a).length())
             .sum()
     }
+
+    /// This mesh as a reader gives it back from a file of its positions: bit-identical
+    /// positions (`-0.0` and `0.0` too) are one vertex, and solids that then share vertices
+    /// where they touch along an edge or at a point get vertices of their own again. `None`
+    /// when no two vertices share a position (the mesh reads back as it is).
+    ///
+    /// Solids [`to_mesh`](crate::Solid::to_mesh) gives touching along an edge read back as the
+    /// same closed shells:
+    ///
+    /// ```
+    /// use bspcsg::{Solid, glam::DVec3};
+    /// let a = Solid::cube(1.0).unwrap();
+    /// let b = a.clone().translate(DVec3::new(1.0, 1.0, 0.0)).unwrap();
+    /// let mesh = a.union(&b).to_mesh();
+    /// assert!(mesh.report().is_closed_manifold());
+    /// let back = mesh.as_read_back().expect("the edge's ends share positions");
+    /// assert!(back.report().is_closed_manifold());
+    /// assert_eq!(back.vertex_count(), mesh.vertex_count());
+    /// ```
+    #[must_use]
+    pub fn as_read_back(&self) -> Option<Mesh> {
+        let mut welder = weld::Welder::with_capacity(self.positions.len());
+        let map: Vec<u32> = self.positions.iter().map(|&p| welder.index(p)).collect();
+        if welder.positions.len() == self.positions.len() {
+            return None;
+        }
+        // As a reader: out-of-range corners are kept for the report to see, triangles that now
+        // repeat a vertex are dropped.
+        let mut welded = Mesh {
+            positions: welder.positions,
+            ..Mesh::default()
+        };
+        let mut readable = self.sources.len() == self.triangles.len();
+        for (t, tri) in self.triangles.iter().enumerate() {
+            let tri = tri.map(|i| map.get(i as usize).copied().unwrap_or(u32::MAX));
+            readable &= !tri.contains(&u32::MAX);
+            if tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2] {
+                welded.triangles.push(tri);
+                welded
+                    .sources
+                    .push(self.sources.get(t).copied().unwrap_or_default());
+            }
+        }
+        if !readable {
+            return Some(welded);
+        }
+        Some(repair::split_touching(&welded).unwrap_or(welded))
+    }
 }
 
 pub(crate) mod import;

@@ -168,3 +168,93 @@ pub(crate) fn weld_within(points: &[DVec3], delta: f64, wide: &Wide) -> (Vec<DVe
     let map = first.into_iter().map(|i| rep_of[i as usize]).collect();
     (reps, map)
 }
+
+#[cfg(test)]
+mod tests {
+    use std::hash::BuildHasher;
+
+    use super::*;
+    use crate::hash::FxBuild;
+
+    /// Pairs of keys a table of `buckets` (a power of two) starts probing at the same bucket:
+    /// the work that collisions add to welding. A table whose keys spread has about
+    /// `n² / 2·buckets` of them; one flooded into a bucket, `n² / 2`, each a longer probe.
+    fn bucket_collisions(hashes: impl Iterator<Item = u64>, buckets: usize) -> u64 {
+        let mut count = vec![0u64; buckets];
+        for h in hashes {
+            count[(h as usize) & (buckets - 1)] += 1;
+        }
+        count.iter().map(|&c| c * c.saturating_sub(1) / 2).sum()
+    }
+
+    /// Issue 12 item 8: positions crafted so that the crate's former unkeyed position hash
+    /// (FxHash over the key) puts them all in one bucket cost the welder no more than random
+    /// positions of the same form. Counted, not timed: the collisions the welder's own hasher
+    /// gives each set at the table size it uses, and the welder's result on both.
+    #[test]
+    fn welder_hash_flooding_costs_no_more_than_random_positions() {
+        const N: usize = 4096;
+        // The buckets of a table sized for N keys (hashbrown keeps it at most 7/8 full).
+        let buckets = (N * 8 / 7).next_power_of_two();
+        let mask = (buckets - 1) as u64;
+        let fx = FxBuild::default();
+        // FxHash of `[u64; 3]` is a fold over its length and its words' bytes: the state after
+        // the length, x = 1 and y = 2 is shared, so only z's eight bytes are hashed per try.
+        let fx_bytes = |state: u64, bytes: &[u8]| {
+            bytes.iter().fold(state, |h, &b| {
+                (h.rotate_left(5) ^ u64::from(b)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95)
+            })
+        };
+        let prefix = fx_bytes(
+            0,
+            &[
+                &3usize.to_ne_bytes()[..],
+                &1.0f64.to_bits().to_le_bytes(),
+                &2.0f64.to_bits().to_le_bytes(),
+            ]
+            .concat(),
+        );
+        let mut crafted = Vec::with_capacity(N);
+        let mut k = 0u64;
+        while crafted.len() < N {
+            let z = f64::from_bits(3.0f64.to_bits() + k);
+            k += 1;
+            if fx_bytes(prefix, &z.to_bits().to_le_bytes()) & mask == 0 {
+                crafted.push(DVec3::new(1.0, 2.0, z));
+            }
+        }
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let random: Vec<DVec3> = (0..N)
+            .map(|_| {
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                DVec3::new(1.0, 2.0, f64::from_bits(3.0f64.to_bits() + (state >> 24)))
+            })
+            .collect();
+        let collisions = |points: &[DVec3], build: &dyn Fn(DVec3) -> u64| {
+            bucket_collisions(points.iter().map(|&p| build(p)), buckets)
+        };
+        let unkeyed = |p: DVec3| fx.hash_one(key(p));
+        // The welder's map hashes `key(p)` with a `KeyedBuild`, as here.
+        let keyed = |p: DVec3| KeyedBuild::default().hash_one(key(p));
+        let flooded = collisions(&crafted, &unkeyed);
+        assert_eq!(flooded, (N * (N - 1) / 2) as u64, "crafted into one bucket");
+        let (c, r) = (collisions(&crafted, &keyed), collisions(&random, &keyed));
+        let spread = (N * N / (2 * buckets)) as u64;
+        assert!(c <= 3 * r, "crafted {c} vs random {r} collisions");
+        assert!(
+            r <= 2 * spread,
+            "random {r} collisions, expected about {spread}"
+        );
+        assert!(flooded > 500 * c, "unkeyed {flooded} vs keyed {c}");
+        // And the welder keeps every one of them apart.
+        for points in [&crafted, &random] {
+            let mut welder = Welder::with_capacity(N);
+            for &p in points.iter() {
+                welder.index(p);
+            }
+            assert_eq!(welder.positions.len(), N);
+        }
+    }
+}

@@ -205,26 +205,34 @@ impl Ctx<'_> {
         let levels = u64::from(leaves.max(2).next_power_of_two().trailing_zeros());
         let work = corners.saturating_mul(levels);
         if work > MAX_SCENE_WORK {
-            return Err(Error::param(
-                "tolerance",
-                self.tol,
-                format!(
-                    "the scene's {leaves} primitives would have about {corners} polygon corners, \
-                     combined over {levels} levels of booleans: about {work} units of work, more \
-                     than the budget of {MAX_SCENE_WORK} (about a minute); use {}",
-                    if 2 * round > corners {
-                        // Round primitives' corners go as 1/tolerance.
-                        format!(
-                            "a tolerance of at least {:.2e}, or fewer round primitives",
-                            self.tol * work as f64 / MAX_SCENE_WORK as f64
-                        )
-                    } else {
-                        "fewer primitives or 2D shapes of fewer points (a tolerance changes only \
-                         round parts), or the marching-cubes route (--via sdf)"
-                            .to_owned()
-                    }
-                ),
-            ));
+            let over = format!(
+                "the scene's {leaves} primitives would have about {corners} polygon corners, \
+                 combined over {levels} levels of booleans: about {work} units of work, more \
+                 than the budget of {MAX_SCENE_WORK} (about a minute)"
+            );
+            // Round primitives' corners go as 1/tolerance: a coarser one is the remedy. Where
+            // most corners are boxes and outlines, no tolerance helps, and naming it would
+            // point at an option the user may never have given: the scene itself is refused.
+            return Err(if 2 * round > corners {
+                Error::param(
+                    "tolerance",
+                    self.tol,
+                    format!(
+                        "{over}; use a tolerance of at least {:.2e}, or fewer round primitives",
+                        self.tol * work as f64 / MAX_SCENE_WORK as f64
+                    ),
+                )
+            } else {
+                Error::Scene {
+                    file: None,
+                    json_path: "$".into(),
+                    message: format!(
+                        "{over}; use fewer primitives or 2D shapes of fewer points (a \
+                         tolerance changes only round parts), or the marching-cubes route \
+                         (--via sdf)"
+                    ),
+                }
+            });
         }
         Ok(())
     }

@@ -10,10 +10,11 @@ use crate::progress::Progress;
 /// `export`.
 pub(crate) fn export(args: &ExportArgs, progress: &Progress) -> Result<(), Failure> {
     let (out, format) = output_target(&args.output)?;
-    // Option faults carry a name but not the file: name it here. I/O and scene errors name it
-    // already.
+    // Option faults carry a name but not the file: name it here. I/O errors and faults of the
+    // scene's text name it already; those of the scene as a whole (its work budget, transforms
+    // that compose to a singular map) are found after reading, without it.
     let in_scene = |e: Error| match e {
-        Error::Io { .. } | Error::Scene { .. } => Failure::from(e),
+        Error::Io { .. } | Error::Scene { file: Some(_), .. } => Failure::from(e),
         other => {
             let mut f = Failure::from(other);
             f.message = format!("{}: {}", args.scene.display(), f.message);

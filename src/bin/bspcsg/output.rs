@@ -2,12 +2,10 @@
 //! written (directories made only then, and removed again if the write fails) with its
 //! summary, and printing that survives closed pipes.
 
-use std::collections::HashMap;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
-use bspcsg::glam::DVec3;
 use bspcsg::{Format, Material, Mesh, MeshReport, write_mesh_as};
 
 use crate::cli::OutputArgs;
@@ -152,12 +150,13 @@ pub(crate) fn finish(
             "bspcsg: warning: {} is not a closed 2-manifold: {report}",
             out.display()
         ));
-    } else if let Some(back) = as_read_back(mesh) {
+    } else if let Some(back) = mesh.as_read_back() {
         let back = back.report();
         if !back.is_closed_manifold() {
             print_stderr(&format!(
-                "bspcsg: warning: {}: its shells touch along {} edges and at {} vertices; a mesh \
-                 file cannot keep them apart, so read back it is not a closed 2-manifold \
+                "bspcsg: warning: {}: its shells touch along {} edges and at {} vertices where \
+                 they cannot be told apart once read back, so read back it is not a closed \
+                 2-manifold \
                  (`info` says so, and a boolean refuses it as an input unless given \
                  --allow-open)",
                 out.display(),
@@ -177,37 +176,6 @@ pub(crate) fn finish(
         ));
     }
     Ok(())
-}
-
-/// The mesh as a reader sees its file, where equal positions are one vertex; `None` when no
-/// two vertices share a position (the mesh reads back as it is). `to_mesh` gives solids that
-/// touch along an edge or at a point vertices of their own at the same place, so that each is a
-/// closed 2-manifold shell; written and read back, they share those vertices again.
-fn as_read_back(mesh: &Mesh) -> Option<Mesh> {
-    let mut index: HashMap<[u64; 3], u32> = HashMap::with_capacity(mesh.positions.len());
-    let map: Vec<u32> = mesh
-        .positions
-        .iter()
-        .map(|&p| {
-            // + 0.0 joins -0.0 with 0.0, as the readers do.
-            let key = (p + DVec3::ZERO).to_array().map(f64::to_bits);
-            let next = index.len() as u32;
-            *index.entry(key).or_insert(next)
-        })
-        .collect();
-    if index.len() == mesh.positions.len() {
-        return None;
-    }
-    let mut positions = vec![DVec3::ZERO; index.len()];
-    for (i, &j) in map.iter().enumerate() {
-        positions[j as usize] = mesh.positions[i];
-    }
-    let triangles = mesh
-        .triangles
-        .iter()
-        .map(|t| t.map(|i| map[i as usize]))
-        .collect();
-    Some(Mesh::new(positions, triangles))
 }
 
 /// Warns that an input holds no triangles: it is read as the empty mesh (a well-formed file

@@ -27,6 +27,8 @@ mod shells;
 mod thin;
 mod tjunction;
 
+pub(crate) use shells::split_touching;
+
 use glam::DVec3;
 use smallvec::SmallVec;
 

@@ -136,6 +136,32 @@ pub(super) fn split_into_shells(
     (mesh, cracks)
 }
 
+/// A mesh file's solids that touch along an edge or at a point, given vertices of their own.
+///
+/// A file keeps no two vertices at one position apart once a reader welds them, so the shells
+/// [`split_into_shells`] made for such solids share their touching vertices again when read
+/// back: an edge of four faces, a vertex of two fans. Pairing the faces around such an edge by
+/// angle, as the split did, and splitting each vertex per fan gives the same closed shells
+/// back. `None` when there is nothing to split, and when the split leaves a half-edge without
+/// a twin: the faces around a crowded edge do not alternate in direction (shells overlapping or
+/// turned inside out there, not touching) or the mesh is open, a defect to report as it is.
+///
+/// Triangles must be in range and repeat no vertex (as readers leave them).
+pub(crate) fn split_touching(mesh: &Mesh) -> Option<Mesh> {
+    let mut used = vec![false; mesh.positions.len()];
+    for t in &mesh.triangles {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    let used = used.iter().filter(|&&u| u).count();
+    let (split, cracks) = split_into_shells(
+        mesh.positions.clone(),
+        (mesh.triangles.clone(), mesh.sources.clone()),
+    );
+    (split.positions.len() > used && cracks.is_empty()).then_some(split)
+}
+
 /// For each corner (half-edge `h` sits at vertex `from(h)`), the fan it belongs to, named by
 /// its root corner. Around a vertex, the corner of the previous half-edge's twin continues the
 /// fan.
