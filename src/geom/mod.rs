@@ -73,6 +73,11 @@ pub(crate) fn is_zero_area([a, b, c]: [glam::DVec3; 3]) -> bool {
     if reach == 0.0 {
         return true;
     }
+    !clearly_spans_area(a, b, c, reach) && flat_to_rounding(a, b, c, reach)
+}
+
+/// [`is_zero_area`]'s measure itself, for corners within `reach` (finite, not 0) of the origin.
+fn flat_to_rounding(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3, reach: f64) -> bool {
     let s = unit_scale(reach);
     let (a, b, c) = (a * s, b * s, c * s);
     // Cross the two shorter edges, at the corner opposite the longest: differences taken at a
@@ -93,6 +98,24 @@ pub(crate) fn is_zero_area([a, b, c]: [glam::DVec3; 3]) -> bool {
         + b.length() * (c - a).length()
         + c.length() * (a - b).length();
     twice <= ZERO_AREA_ULPS * f64::EPSILON * rounding
+}
+
+/// A quick sufficient test that [`is_zero_area`] is false, without its scaling and square
+/// roots: most triangles a boolean or `to_mesh` asks about are far from flat (the core fans of
+/// an indexed boolean: a tenth of `to_mesh` on a sphere union went to the full test).
+///
+/// Every corner is at most `√3·reach` from the origin and every edge at most `2√3·reach` long,
+/// so the full test's rounding term is at most `18·reach²`, and its bound at most
+/// `ZERO_AREA_ULPS·ε·18·reach²`. The cross product here and the full test's differ from the
+/// true twice-area by a few `ε·reach²` each, so a squared cross product above four times
+/// that bound, squared, leaves the full test nothing to find. Only where `reach²` neither
+/// overflows nor underflows (else the full test, which scales first, decides).
+fn clearly_spans_area(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3, reach: f64) -> bool {
+    if !(1e-60..=1e60).contains(&reach) {
+        return false;
+    }
+    let bound = 4.0 * ZERO_AREA_ULPS * f64::EPSILON * 18.0 * reach * reach;
+    (b - a).cross(c - a).length_squared() > bound * bound
 }
 
 #[cfg(test)]
@@ -121,5 +144,37 @@ mod tests {
         assert!(!is_zero_area(far));
         assert!(is_zero_area([DVec3::ONE; 3]));
         assert!(!is_zero_area([DVec3::ZERO, DVec3::X, DVec3::NAN]));
+    }
+
+    /// The quick test never says "spans area" where the full one says flat: caps of every
+    /// height from far below to far above the threshold, at many scales and offsets.
+    #[test]
+    fn the_quick_test_agrees_with_the_full_one() {
+        let (mut checked, mut flat) = (0, 0);
+        for scale in [1e-70, 1e-59, 1e-30, 1e-3, 1.0, 7.3, 1e5, 1e30, 1e59, 1e70] {
+            for offset in [0.0, 0.5, 3.0, 1e3, 1e6] {
+                for k in -40..=8 {
+                    let h = 10f64.powf(k as f64 * 0.5) * scale;
+                    let at = DVec3::new(offset, -0.7 * offset, 0.3 * offset) * scale;
+                    let tri = [
+                        at,
+                        at + DVec3::new(1.0, 0.2, -0.1) * scale,
+                        at + DVec3::new(0.4, 0.08, -0.04) * scale + DVec3::new(0.1, -0.3, 1.0) * h,
+                    ];
+                    let reach = tri[0].abs().max(tri[1].abs()).max(tri[2].abs());
+                    let reach = reach.max_element();
+                    if clearly_spans_area(tri[0], tri[1], tri[2], reach) {
+                        assert!(
+                            !flat_to_rounding(tri[0], tri[1], tri[2], reach),
+                            "{scale} {offset} {k}"
+                        );
+                        checked += 1;
+                    } else if flat_to_rounding(tri[0], tri[1], tri[2], reach) {
+                        flat += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 500 && flat > 50, "{checked} {flat}");
     }
 }

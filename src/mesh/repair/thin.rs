@@ -33,16 +33,9 @@ pub(super) fn drop_thin_shells(mesh: &mut Mesh, delta: f64, filled_from: usize) 
         sets.union(t[0] as usize, t[1] as usize);
         sets.union(t[0] as usize, t[2] as usize);
     }
-    let edges: HashSet<(u32, u32), FxBuild> = mesh
-        .triangles
-        .iter()
-        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
-        .collect();
-    // Per shell (by its root vertex): six times the volume about the root, twice the area, and
-    // whether every edge has its reverse.
+    // Per shell (by its root vertex): six times the volume about the root, twice the area.
     let mut volume = vec![0.0f64; n];
     let mut area = vec![0.0f64; n];
-    let mut open = vec![false; n];
     let root: Vec<usize> = mesh
         .triangles
         .iter()
@@ -55,12 +48,32 @@ pub(super) fn drop_thin_shells(mesh: &mut Mesh, delta: f64, filled_from: usize) 
         volume[r] += a.dot(b.cross(c));
         area[r] += length((b - a).cross(c - a));
         filled[r] |= i >= filled_from;
-        open[r] |= [(t[1], t[0]), (t[2], t[1]), (t[0], t[2])]
-            .iter()
-            .any(|e| !edges.contains(e));
     }
     // Mean thickness 2V / A = (6V / 3) / (2A / 2) = (2/3)·(6V) / (2A).
-    let thin = |r: usize| !open[r] && !filled[r] && 2.0 * volume[r].abs() / 3.0 <= delta * area[r];
+    let flat = |r: usize| !filled[r] && 2.0 * volume[r].abs() / 3.0 <= delta * area[r];
+    // Whether every edge has its reverse is asked only of the flat shells (most meshes have
+    // none): a hash of every edge was as much as the shell split itself. An edge's reverse
+    // shares its vertices, so it lies in the same shell.
+    let candidate: Vec<bool> = root.iter().map(|&r| flat(r)).collect();
+    if !candidate.iter().any(|&c| c) {
+        return 0;
+    }
+    let edges: HashSet<(u32, u32), FxBuild> = mesh
+        .triangles
+        .iter()
+        .zip(&candidate)
+        .filter(|(_, c)| **c)
+        .flat_map(|(t, _)| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .collect();
+    let mut open = vec![false; n];
+    for (t, &r) in mesh.triangles.iter().zip(&root) {
+        if flat(r) {
+            open[r] |= [(t[1], t[0]), (t[2], t[1]), (t[0], t[2])]
+                .iter()
+                .any(|e| !edges.contains(e));
+        }
+    }
+    let thin = |r: usize| flat(r) && !open[r];
     let keep: Vec<bool> = root.iter().map(|&r| !thin(r)).collect();
     let mut counted = vec![false; n];
     let mut dropped = 0;
