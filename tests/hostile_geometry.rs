@@ -10,8 +10,8 @@ use std::path::Path;
 
 use bspcsg::read_mesh;
 use common::box_obj_text;
-use common::hostile::boxes_obj;
-use common::run::{Scratch, bspcsg};
+use common::hostile::{boxes_obj, right_or_refused};
+use common::run::{Scratch, bspcsg, bspcsg_to, refused};
 
 #[test]
 fn a_tiny_cube_at_a_unit_cube_corner_never_gives_a_broken_result_with_success() {
@@ -23,28 +23,10 @@ fn a_tiny_cube_at_a_unit_cube_corner_never_gives_a_broken_result_with_success() 
         fs::write(&tiny, box_obj_text([-s; 3], [0.0; 3])).unwrap();
         for op in ["union", "difference"] {
             let out = dir.path(&format!("{op}{s:e}.obj"));
-            let run = bspcsg([
-                op.as_ref(),
-                unit.as_os_str(),
-                tiny.as_os_str(),
-                "-o".as_ref(),
-                out.as_os_str(),
-            ]);
-            // Either right (closed, the unit cube's volume) or refused with exit 2 and nothing
-            // written: never exit 0 with an open mesh.
-            if run.code == 0 {
-                let report = read_mesh(&out).unwrap().report();
-                assert!(report.is_closed_manifold(), "{op} {s:e}: {report}");
+            let run = bspcsg_to(&[op.as_ref(), unit.as_os_str(), tiny.as_os_str()], &out);
+            right_or_refused(run, &out, &format!("{op} {s:e}"), |report| {
                 assert!((report.volume - 1.0).abs() < 1e-12, "{op} {s:e}: {report}");
-            } else {
-                let run = run.code(2);
-                assert!(
-                    run.stderr.contains("not a closed 2-manifold"),
-                    "{}",
-                    run.stderr
-                );
-                assert!(!out.exists(), "{op} {s:e}: nothing is written");
-            }
+            });
         }
     }
 }
@@ -65,28 +47,12 @@ fn a_sphere_less_itself_turned_a_hair_is_right_or_refused() {
     bspcsg::write_mesh(&a, &sphere.to_mesh(), &[]).unwrap();
     bspcsg::write_mesh(&b, &turned.to_mesh(), &[]).unwrap();
     let out = dir.path("out.obj");
-    let run = bspcsg([
-        "difference".as_ref(),
-        a.as_os_str(),
-        b.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-    ]);
-    if run.code == 0 {
-        let report = read_mesh(&out).unwrap().report();
-        assert!(report.is_closed_manifold(), "{report}");
+    let run = bspcsg_to(&["difference".as_ref(), a.as_os_str(), b.as_os_str()], &out);
+    right_or_refused(run, &out, "sphere less itself turned", |report| {
         // The slivers between a sphere and its turned twin: at most the facets' tilt (1.7e-6
         // rad) times the sphere's area.
         assert!(report.volume >= 0.0 && report.volume < 1e-4, "{report}");
-    } else {
-        let run = run.code(2);
-        assert!(
-            run.stderr.contains("not a closed 2-manifold"),
-            "{}",
-            run.stderr
-        );
-        assert!(!out.exists(), "nothing is written");
-    }
+    });
 }
 
 #[test]
@@ -103,17 +69,12 @@ fn overlapping_shells_are_refused_as_an_operand_and_reported_by_info() {
     let other = dir.path("other.obj");
     fs::write(&other, box_obj_text([0.25, 0.25, -0.5], [1.25, 1.25, 0.5])).unwrap();
     let out = dir.path("out.obj");
-    let run = bspcsg([
-        "union".as_ref(),
-        shells.as_os_str(),
-        other.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-    ])
-    .code(2);
-    assert!(run.stderr.contains("self-intersecting"), "{}", run.stderr);
-    assert!(run.stderr.contains("shells.obj"), "{}", run.stderr);
-    assert!(!out.exists());
+    refused(
+        &["union".as_ref(), shells.as_os_str(), other.as_os_str()],
+        &out,
+        2,
+        &["self-intersecting", "shells.obj"],
+    );
     let info = bspcsg(["info".as_ref(), shells.as_os_str()]).ok();
     assert!(
         info.stdout.contains("bounds a solid                  no"),
@@ -204,28 +165,17 @@ fn overlapping_shells_are_united_when_asked_and_a_shell_through_itself_is_refuse
         let out = dir.path("out.obj");
         let mut args: Vec<&OsStr> = vec!["union".as_ref()];
         args.extend(flags.iter().map(OsStr::new));
-        args.extend([
-            folded.as_os_str(),
-            alone.as_os_str(),
-            "-o".as_ref(),
-            out.as_os_str(),
-        ]);
-        let run = bspcsg(&args).code(2);
-        assert!(run.stderr.contains("folded.obj"), "{}", run.stderr);
-        assert!(run.stderr.contains(&first), "{}", run.stderr);
-        assert!(!out.exists());
+        args.extend([folded.as_os_str(), alone.as_os_str()]);
+        refused(&args, &out, 2, &["folded.obj", &first]);
     }
     // Without the flag, overlapping shells are refused with a hint at it.
     let out = dir.path("out.obj");
-    let run = bspcsg([
-        "union".as_ref(),
-        shells.as_os_str(),
-        alone.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-    ])
-    .code(2);
-    assert!(run.stderr.contains("--union-shells"), "{}", run.stderr);
+    bspcsg_to(
+        &["union".as_ref(), shells.as_os_str(), alone.as_os_str()],
+        &out,
+    )
+    .code(2)
+    .says(&["--union-shells"]);
 }
 
 /// The count `info` prints on its line `crossing triangle pairs`.
@@ -256,17 +206,12 @@ fn shells_overlapping_in_shared_planes_are_refused_and_face_to_face_ones_accepte
     fs::write(&alone, box_obj_text([5.0; 3], [6.0; 3])).unwrap();
     assert!(info_crossing_pairs(&moved) > 0);
     let out = dir.path("out.obj");
-    let run = bspcsg([
-        "union".as_ref(),
-        moved.as_os_str(),
-        alone.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-    ])
-    .code(2);
-    assert!(run.stderr.contains("self-intersecting"), "{}", run.stderr);
-    assert!(run.stderr.contains("moved.obj"), "{}", run.stderr);
-    assert!(!out.exists());
+    refused(
+        &["union".as_ref(), moved.as_os_str(), alone.as_os_str()],
+        &out,
+        2,
+        &["self-intersecting", "moved.obj"],
+    );
     // As their union: 1.5, and 2.5 with the far box.
     let options = bspcsg::FromMeshOptions::default().with_union_shells(true);
     assert_eq!(bspcsg::read_solid(&moved, &options).unwrap().volume(), 1.5);
@@ -283,16 +228,12 @@ fn shells_overlapping_in_shared_planes_are_refused_and_face_to_face_ones_accepte
     let twice = dir.path("twice.obj");
     fs::write(&twice, boxes_obj(&[unit, unit])).unwrap();
     assert!(info_crossing_pairs(&twice) >= 12);
-    let run = bspcsg([
-        "union".as_ref(),
-        twice.as_os_str(),
-        alone.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-    ])
-    .code(2);
-    assert!(run.stderr.contains("twice.obj"), "{}", run.stderr);
-    assert!(!out.exists());
+    refused(
+        &["union".as_ref(), twice.as_os_str(), alone.as_os_str()],
+        &out,
+        2,
+        &["twice.obj"],
+    );
 }
 
 /// Solids touching along an edge or at a point: `to_mesh` gives each its own vertices there

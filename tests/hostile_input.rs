@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 use bspcsg::{Error, MAX_CROSSING_PAIRS, MAX_READ_TRIANGLES, read_mesh};
 use common::box_obj_text;
 use common::hostile::{points_obj, tetra_buffer, tetra_gltf};
-use common::run::{Scratch, bspcsg};
+use common::run::{Scratch, bspcsg, refused};
 
 /// Writes `sub/doc.gltf` naming `uri` and returns its path.
 fn doc_with_uri(s: &Scratch, uri: &str, byte_length: u64) -> PathBuf {
@@ -25,7 +25,7 @@ fn doc_with_uri(s: &Scratch, uri: &str, byte_length: u64) -> PathBuf {
 }
 
 /// Asserts that reading `doc` fails with a message naming the document and the URI.
-fn refused(doc: &Path, uri: &str, why: &str) -> String {
+fn read_refused(doc: &Path, uri: &str, why: &str) -> String {
     let e = read_mesh(doc).expect_err(uri);
     let msg = e.to_string();
     assert!(
@@ -61,18 +61,18 @@ fn gltf_buffer_uri_stays_in_the_document_folder() {
         "file:///etc/passwd",
     ] {
         let doc = doc_with_uri(&s, uri, 72);
-        refused(&doc, uri, "");
+        read_refused(&doc, uri, "");
     }
     let doc = doc_with_uri(&s, "../outside.bin", 72);
-    refused(&doc, "../outside.bin", "no `..`");
+    read_refused(&doc, "../outside.bin", "no `..`");
 
     // A symbolic link inside the folder that leads out of it: to a file, to /dev/zero.
     std::os::unix::fs::symlink(s.path("outside.bin"), s.path("sub/link.bin")).unwrap();
     let doc = doc_with_uri(&s, "link.bin", 72);
-    refused(&doc, "link.bin", "outside the document's folder");
+    read_refused(&doc, "link.bin", "outside the document's folder");
     std::os::unix::fs::symlink("/dev/zero", s.path("sub/zero.bin")).unwrap();
     let doc = doc_with_uri(&s, "zero.bin", 72);
-    refused(&doc, "zero.bin", "outside the document's folder");
+    read_refused(&doc, "zero.bin", "outside the document's folder");
     // A link that stays inside is followed.
     std::os::unix::fs::symlink("inside.bin", s.path("sub/alias.bin")).unwrap();
     let doc = doc_with_uri(&s, "alias.bin", 72);
@@ -87,30 +87,27 @@ fn gltf_buffer_uri_stays_in_the_document_folder() {
     assert!(made.success());
     let t = Instant::now();
     let doc = doc_with_uri(&s, "fifo.bin", 72);
-    refused(&doc, "fifo.bin", "not a regular file");
+    read_refused(&doc, "fifo.bin", "not a regular file");
     assert!(t.elapsed() < Duration::from_secs(5));
     fs::create_dir(s.path("sub/dir.bin")).unwrap();
     let doc = doc_with_uri(&s, "dir.bin", 72);
-    refused(&doc, "dir.bin", "not a regular file");
+    read_refused(&doc, "dir.bin", "not a regular file");
 
     // Sizes: a file shorter than byteLength, a byteLength beyond the per-buffer limit.
     let doc = doc_with_uri(&s, "inside.bin", 73);
-    refused(&doc, "inside.bin", "fewer than the buffer's byteLength 73");
+    read_refused(&doc, "inside.bin", "fewer than the buffer's byteLength 73");
     let doc = doc_with_uri(&s, "inside.bin", 1 << 40);
-    refused(&doc, "inside.bin", "exceeds the limit");
+    read_refused(&doc, "inside.bin", "exceeds the limit");
 
     // Through the CLI: exit 1, the message names the document and the URI, nothing written.
     let doc = doc_with_uri(&s, "../../../../../../etc/passwd", 72);
     let out = s.path("out.obj");
-    let run = bspcsg([
-        OsStr::new("convert"),
-        doc.as_os_str(),
-        OsStr::new("-o"),
-        out.as_os_str(),
-    ])
-    .code(1);
-    assert!(run.stderr.contains("etc/passwd"), "{}", run.stderr);
-    assert!(!out.exists());
+    refused(
+        &["convert".as_ref(), doc.as_os_str()],
+        &out,
+        1,
+        &["etc/passwd"],
+    );
 }
 
 /// A mesh of `n` triangles (a fan over four corners repeated), drawn by `instances` nodes.
@@ -170,15 +167,12 @@ fn gltf_instancing_over_the_triangle_budget_is_refused_quickly() {
 
     // The CLI exits 2 for it, writing nothing.
     let out = s.path("out.stl");
-    let run = bspcsg([
-        OsStr::new("convert"),
-        doc.as_os_str(),
-        OsStr::new("-o"),
-        out.as_os_str(),
-    ])
-    .code(2);
-    assert!(run.stderr.contains("MAX_READ_TRIANGLES"), "{}", run.stderr);
-    assert!(!out.exists());
+    refused(
+        &["convert".as_ref(), doc.as_os_str()],
+        &out,
+        2,
+        &["MAX_READ_TRIANGLES"],
+    );
     bspcsg([OsStr::new("info"), doc.as_os_str()]).code(2);
 
     // One node drawing one mesh of 20,000 primitives on the same accessors: the same count.
@@ -297,16 +291,12 @@ fn a_repeated_json_key_is_refused_naming_its_path() {
     )
     .unwrap();
     let out = dir.path("dup.obj");
-    let run = bspcsg([
-        "export".as_ref(),
-        scene.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-    ])
-    .code(1);
-    assert!(run.stderr.contains("dup.json"), "{}", run.stderr);
-    assert!(run.stderr.contains("$.data.radius"), "{}", run.stderr);
-    assert!(run.stderr.contains("duplicate key"), "{}", run.stderr);
+    refused(
+        &["export".as_ref(), scene.as_os_str()],
+        &out,
+        1,
+        &["dup.json", "$.data.radius", "duplicate key"],
+    );
 }
 
 /// An empty result is written with a warning, and reads back as the empty solid with a
@@ -407,20 +397,16 @@ fn small_messages_tiny_cubes_and_unbounded_scenes() {
         r#"{"kind":"sdf_primitive","data":{"primitive_type":"plane","normal":[0,1,0],"offset":0}}"#,
     )
     .unwrap();
-    let run = bspcsg([
-        "export".as_ref(),
-        plane.as_os_str(),
-        "--via".as_ref(),
-        "sdf".as_ref(),
-        "-o".as_ref(),
-        dir.path("plane.obj").as_os_str(),
-    ])
-    .code(1);
-    assert!(run.stderr.contains("plane.json"), "{}", run.stderr);
-    assert!(
-        run.stderr.contains("intersect the half-space"),
-        "{}",
-        run.stderr
+    refused(
+        &[
+            "export".as_ref(),
+            plane.as_os_str(),
+            "--via".as_ref(),
+            "sdf".as_ref(),
+        ],
+        &dir.path("plane.obj"),
+        1,
+        &["plane.json", "intersect the half-space"],
     );
 }
 

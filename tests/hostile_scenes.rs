@@ -5,10 +5,27 @@ mod common;
 
 use std::ffi::OsStr;
 use std::fs;
+use std::path::Path;
 use std::time::{Duration, Instant};
 
 use bspcsg::{Error, read_mesh};
-use common::run::{Scratch, bspcsg};
+use common::run::{Run, Scratch, bspcsg, refused};
+
+/// `bspcsg export ARGS… -o OUT`, refused with exit 1 within five seconds (before any work),
+/// saying each of `needles` and writing nothing.
+fn export_refused_at_once(args: &[&OsStr], out: &Path, needles: &[&str]) -> Run {
+    let t = Instant::now();
+    let args: Vec<&OsStr> = std::iter::once("export".as_ref())
+        .chain(args.iter().copied())
+        .collect();
+    let run = refused(&args, out, 1, needles);
+    let took = t.elapsed();
+    assert!(
+        took < Duration::from_secs(5),
+        "refused before any work, not in {took:?}"
+    );
+    run
+}
 
 #[test]
 fn scene_exports_over_the_polygon_budget_are_refused_with_a_tolerance_that_fits() {
@@ -32,25 +49,10 @@ fn scene_exports_over_the_polygon_budget_are_refused_with_a_tolerance_that_fits(
     )
     .unwrap();
     let out = dir.path("four.obj");
-    let t = Instant::now();
-    let run = bspcsg([
-        "export".as_ref(),
-        scene.as_os_str(),
-        "--tolerance".as_ref(),
-        "1e-6".as_ref(),
-        "-o".as_ref(),
-        out.as_os_str(),
-    ])
-    .code(1);
-    assert!(
-        t.elapsed() < Duration::from_secs(5),
-        "refused before any work"
-    );
-    assert!(run.stderr.contains("four.json"), "{}", run.stderr);
-    assert!(
-        run.stderr.contains("polygon budget of a scene"),
-        "{}",
-        run.stderr
+    export_refused_at_once(
+        &[scene.as_os_str(), "--tolerance".as_ref(), "1e-6".as_ref()],
+        &out,
+        &["four.json", "polygon budget of a scene"],
     );
     // The message names a tolerance; the library refuses the same way.
     let s = bspcsg::Scene::from_path(&scene).unwrap();
@@ -66,7 +68,6 @@ fn scene_exports_over_the_polygon_budget_are_refused_with_a_tolerance_that_fits(
         .parse()
         .unwrap();
     assert!(enough > 1e-6 && enough < 1e-5, "{enough}");
-    assert!(!out.exists());
 }
 
 /// The points of a wavy ring, `[x,y]` each, for scene documents.
@@ -96,28 +97,15 @@ fn a_bake_over_the_outline_budget_is_refused_with_a_cell_that_fits() {
     )
     .unwrap();
     let out = dir.path("outline.obj");
-    let t = Instant::now();
-    let run = bspcsg([
-        "export".as_ref(),
-        scene.as_os_str(),
-        "--via".as_ref(),
-        "sdf".as_ref(),
-        "-o".as_ref(),
-        out.as_os_str(),
-    ])
-    .code(1);
-    assert!(
-        t.elapsed() < Duration::from_secs(5),
-        "refused before sampling"
+    export_refused_at_once(
+        &[scene.as_os_str(), "--via".as_ref(), "sdf".as_ref()],
+        &out,
+        &[
+            "outline.json",
+            "outlines of 10000 points",
+            "budget of 4294967296",
+        ],
     );
-    for needle in [
-        "outline.json",
-        "outlines of 10000 points",
-        "budget of 4294967296",
-    ] {
-        assert!(run.stderr.contains(needle), "{needle}: {}", run.stderr);
-    }
-    assert!(!out.exists());
     let s = bspcsg::Scene::from_path(&scene).unwrap();
     let err = s.bake(&bspcsg::BakeOptions::default()).unwrap_err();
     let (cell, enough) = match &err {
@@ -173,36 +161,21 @@ fn scene_exports_over_the_work_budget_are_refused_before_any_work() {
     )
     .unwrap();
     let out = dir.path("refs.obj");
-    let t = Instant::now();
-    let run = bspcsg([
-        "export".as_ref(),
-        scene.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-    ])
-    .code(1);
-    assert!(
-        t.elapsed() < Duration::from_secs(5),
-        "refused before any work"
-    );
-    for needle in [
-        "refs.json",
-        "300 primitives",
-        "18000000 polygon corners",
-        "budget of 16777216",
-        "2D shapes of fewer points",
-    ] {
-        assert!(run.stderr.contains(needle), "{needle}: {}", run.stderr);
-    }
-    // No tolerance was given and none would help: the refusal names the scene, not an option.
-    assert!(
-        run.stderr
-            .contains("refs.json: $: the scene's 300 primitives"),
-        "{}",
-        run.stderr
+    let run = export_refused_at_once(
+        &[scene.as_os_str()],
+        &out,
+        &[
+            "refs.json",
+            "300 primitives",
+            "18000000 polygon corners",
+            "budget of 16777216",
+            "2D shapes of fewer points",
+            // No tolerance was given and none would help: the refusal names the scene, not an
+            // option.
+            "refs.json: $: the scene's 300 primitives",
+        ],
     );
     assert!(!run.stderr.contains("tolerance` ="), "{}", run.stderr);
-    assert!(!out.exists());
     // 50,000 boxes in one union: 1.2 million corners over 16 levels.
     let boxes: Vec<String> = (0..50_000)
         .map(|i| {

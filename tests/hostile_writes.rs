@@ -4,7 +4,6 @@
 
 mod common;
 
-use std::ffi::OsStr;
 use std::fs;
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -12,7 +11,7 @@ use std::time::{Duration, Instant};
 use bspcsg::read_mesh;
 use common::box_obj_text;
 use common::hostile::{box_file, tetra_buffer, tetra_gltf};
-use common::run::{Scratch, bspcsg};
+use common::run::{Scratch, bspcsg, bspcsg_to, refused};
 
 /// Item 5: a sidecar (`X.bin` for `-o X.gltf`, `X.mtl` for `-o X.obj`) never replaces an
 /// input or a file an input needs; the command exits 1 before any work, the input intact.
@@ -26,20 +25,12 @@ fn sidecar_never_replaces_an_input_or_its_buffer() {
     let before = fs::read(s.path("cube.bin")).unwrap();
 
     let out = s.path("cube.gltf");
-    let run = bspcsg([
-        OsStr::new("union"),
-        g.as_os_str(),
-        b.as_os_str(),
-        OsStr::new("-o"),
-        out.as_os_str(),
-    ])
-    .code(1);
-    assert!(
-        run.stderr.contains("cube.bin") && run.stderr.contains("g.gltf"),
-        "{}",
-        run.stderr
+    refused(
+        &["union".as_ref(), g.as_os_str(), b.as_os_str()],
+        &out,
+        1,
+        &["cube.bin", "g.gltf"],
     );
-    assert!(!out.exists());
     assert_eq!(fs::read(s.path("cube.bin")).unwrap(), before);
     assert_eq!(read_mesh(&g).unwrap().triangle_count(), 4);
 
@@ -49,29 +40,16 @@ fn sidecar_never_replaces_an_input_or_its_buffer() {
     fs::write(&c, format!("mtllib shared.mtl\n{text}")).unwrap();
     fs::write(s.path("shared.mtl"), "newmtl keep\n").unwrap();
     let out = s.path("shared.obj");
-    let run = bspcsg([
-        OsStr::new("union"),
-        c.as_os_str(),
-        b.as_os_str(),
-        OsStr::new("-o"),
-        out.as_os_str(),
-    ])
-    .code(1);
-    assert!(run.stderr.contains("shared.mtl"), "{}", run.stderr);
+    bspcsg_to(&["union".as_ref(), c.as_os_str(), b.as_os_str()], &out)
+        .code(1)
+        .says(&["shared.mtl"]);
     assert_eq!(
         fs::read_to_string(s.path("shared.mtl")).unwrap(),
         "newmtl keep\n"
     );
     // Away from inputs, the same command writes both files.
     let out = s.path("fresh.gltf");
-    bspcsg([
-        OsStr::new("union"),
-        g.as_os_str(),
-        b.as_os_str(),
-        OsStr::new("-o"),
-        out.as_os_str(),
-    ])
-    .ok();
+    bspcsg_to(&["union".as_ref(), g.as_os_str(), b.as_os_str()], &out).ok();
     assert!(s.path("fresh.bin").exists());
     assert!(read_mesh(&out).unwrap().triangle_count() > 0);
 }
@@ -82,21 +60,17 @@ fn gltf_output_named_as_its_own_buffer_is_refused() {
     let s = Scratch::new("own_buffer");
     let b = box_file(&s.path("b.obj"), 0.0);
     let out = s.path("x.bin");
-    let run = bspcsg([
-        OsStr::new("convert"),
-        b.as_os_str(),
-        OsStr::new("--format"),
-        OsStr::new("gltf"),
-        OsStr::new("-o"),
-        out.as_os_str(),
-    ])
-    .code(1);
-    assert!(
-        run.stderr.contains("would be the output itself"),
-        "{}",
-        run.stderr
+    refused(
+        &[
+            "convert".as_ref(),
+            b.as_os_str(),
+            "--format".as_ref(),
+            "gltf".as_ref(),
+        ],
+        &out,
+        1,
+        &["would be the output itself"],
     );
-    assert!(!out.exists());
     // The library refuses it too.
     let m = read_mesh(&b).unwrap();
     let e = bspcsg::write_mesh_as(&out, &m, &[], bspcsg::Format::Gltf).unwrap_err();

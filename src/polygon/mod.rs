@@ -8,8 +8,10 @@ use smallvec::SmallVec;
 use crate::geom::{Aabb, Plane, Side};
 
 mod planes;
+mod shared;
 
 pub(crate) use planes::{attach_edge_planes, meet};
+pub(crate) use shared::share_near_parallel_vertices;
 
 /// Vertex storage: quads and their split fragments stay inline.
 pub(crate) type Vertices = SmallVec<[DVec3; 6]>;

@@ -50,7 +50,7 @@ pub(crate) fn meet(p: &Plane, q: &Plane, r: &Plane) -> Option<DVec3> {
 }
 
 /// The plane facing the way whose normal's first non-zero component is positive.
-fn canonical(p: &Plane) -> Plane {
+pub(super) fn canonical(p: &Plane) -> Plane {
     let n = p.normal;
     let first = if n.x != 0.0 {
         n.x
@@ -62,7 +62,7 @@ fn canonical(p: &Plane) -> Plane {
     if first < 0.0 { p.flipped() } else { *p }
 }
 
-fn plane_bits(p: &Plane) -> [u64; 6] {
+pub(super) fn plane_bits(p: &Plane) -> [u64; 6] {
     [
         p.normal.x.to_bits(),
         p.normal.y.to_bits(),

@@ -6,11 +6,9 @@ use glam::DVec3;
 use super::bvh::MeshBvh;
 use super::camera::{Frame, Ray};
 use super::light::shade;
+use super::normals::{corner_normals, corners};
 use super::render::{RenderOptions, Shading, Tile};
 use crate::mesh::{Material, Mesh};
-
-/// Largest angle between a triangle's normal and a vertex normal that still smooths.
-const CREASE_COS: f64 = 0.819; // cos 35°
 
 /// A mesh prepared for casting.
 pub(crate) struct MeshTracer<'a> {
@@ -18,7 +16,8 @@ pub(crate) struct MeshTracer<'a> {
     bvh: &'a MeshBvh,
     pub frame: Frame,
     opts: &'a RenderOptions,
-    vertex_normals: Vec<DVec3>,
+    /// Per triangle corner, split at creases (empty for flat shading).
+    corner_normals: Vec<[DVec3; 3]>,
     colors: Vec<DVec3>,
     /// Offset of secondary rays from the surface.
     bias: f64,
@@ -33,17 +32,8 @@ impl<'a> MeshTracer<'a> {
         frame: Frame,
         opts: &'a RenderOptions,
     ) -> MeshTracer<'a> {
-        let vertex_normals = if opts.shading == Shading::Smooth {
-            let mut n = vec![DVec3::ZERO; mesh.positions.len()];
-            for t in 0..mesh.triangles.len() {
-                let Some(c) = corners(mesh, t) else { continue };
-                // Area-weighted: the unnormalised cross product.
-                let f = (c[1] - c[0]).cross(c[2] - c[0]);
-                for &i in &mesh.triangles[t] {
-                    n[i as usize] += f;
-                }
-            }
-            n.iter().map(|v| v.normalize_or_zero()).collect()
+        let corner_normals = if opts.shading == Shading::Smooth {
+            corner_normals(mesh)
         } else {
             Vec::new()
         };
@@ -62,7 +52,7 @@ impl<'a> MeshTracer<'a> {
             bvh,
             frame,
             opts,
-            vertex_normals,
+            corner_normals,
             colors,
             bias,
             ao_len: 0.04 * size,
@@ -72,15 +62,13 @@ impl<'a> MeshTracer<'a> {
     /// The shading normal at a hit, facing the ray.
     fn normal(&self, triangle: u32, uv: (f64, f64), dir: DVec3) -> DVec3 {
         let t = triangle as usize;
-        let Some(c) = corners(self.mesh, t) else {
+        let Some(c) = corners(self.mesh, &self.mesh.triangles[t]) else {
             return -dir;
         };
         let face = (c[1] - c[0]).cross(c[2] - c[0]).normalize_or_zero();
         let mut n = face;
-        if self.opts.shading == Shading::Smooth {
-            let [a, b, cc] = self.mesh.triangles[t].map(|i| self.vertex_normals[i as usize]);
-            let pick = |v: DVec3| if v.dot(face) >= CREASE_COS { v } else { face };
-            let s = pick(a) * (1.0 - uv.0 - uv.1) + pick(b) * uv.0 + pick(cc) * uv.1;
+        if let Some(&[a, b, cc]) = self.corner_normals.get(t) {
+            let s = a * (1.0 - uv.0 - uv.1) + b * uv.0 + cc * uv.1;
             n = s.try_normalize().unwrap_or(face);
         }
         // Open meshes show their back faces: light them as seen.
@@ -155,9 +143,4 @@ impl<'a> MeshTracer<'a> {
         }
         open / steps as f64
     }
-}
-
-fn corners(mesh: &Mesh, t: usize) -> Option<[DVec3; 3]> {
-    let [a, b, c] = mesh.triangles[t].map(|i| mesh.positions.get(i as usize).copied());
-    Some([a?, b?, c?])
 }

@@ -18,6 +18,7 @@ mod check;
 mod image;
 mod light;
 mod march;
+mod normals;
 mod render;
 
 /// The scene document's view types, used by the renderer as they are.
@@ -29,6 +30,7 @@ pub use check::{
 };
 pub use image::{Image, Rgb8};
 pub use light::DEFAULT_AMBIENT;
+pub use normals::CREASE_DEG;
 pub use render::{RenderOptions, Shading};
 
 use crate::error::Result;

@@ -17,8 +17,10 @@ use crate::sdf::{Light, Scene};
 pub enum Shading {
     /// Each triangle's own normal: facets show.
     Flat,
-    /// Vertex normals (area-weighted) interpolated across triangles, except across creases
-    /// sharper than 35°, where the triangle's normal is kept so hard edges stay hard.
+    /// Normals interpolated across triangles from each corner's angle-weighted average over the
+    /// triangles at its vertex, split at creases: triangles whose normals differ by more than
+    /// [`CREASE_DEG`](crate::raymarch::CREASE_DEG) (30°) do not share a normal, so hard edges
+    /// stay hard and a flat face fanned from a fillet's rim shades flat.
     #[default]
     Smooth,
 }

@@ -8,7 +8,7 @@ use super::{PrecisionLoss, Solid};
 use crate::bsp::{Coplanar, FOCUS_MARGIN, Label, Surface, Tree};
 use crate::geom::{Aabb, Plane, Tolerance};
 use crate::mesh::repair::WELD_TOLERANCES;
-use crate::polygon::{Polygon, Split, attach_edge_planes};
+use crate::polygon::{Polygon, Split, attach_edge_planes, share_near_parallel_vertices};
 
 /// A boolean operation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -178,7 +178,10 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
             (far, near)
         },
     );
-    let (polygons, index) = assemble(a_kept, b_kept, op == BoolOp::Difference);
+    let ((a_far, mut a_near), (b_far, mut b_near)) = (a_kept, b_kept);
+    // Both operands' cut points on three planes, two nearly parallel, made one point.
+    share_near_parallel_vertices(&mut [&mut a_near, &mut b_near], eps);
+    let (polygons, index) = assemble((a_far, a_near), (b_far, b_near), op == BoolOp::Difference);
     Solid::with_eps(polygons, eps, lost).with_index(index)
 }
 

@@ -1,11 +1,28 @@
-//! Small generated inputs for the hostile-input tests: a glTF tetrahedron and its buffer,
-//! boxes as files, points as flat triangles.
+//! Small generated inputs for the hostile-input tests (a glTF tetrahedron and its buffer,
+//! boxes as files, points as flat triangles) and the right-or-refused check.
 
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
 
+use bspcsg::MeshReport;
+
+use super::run::Run;
 use super::{box_obj_text, obj_box_mesh};
+
+/// The promise for results the kernel may not resolve: either right (exit 0, the written mesh
+/// a closed 2-manifold whose report passes `check`) or refused with exit 2 as not a closed
+/// 2-manifold, nothing written. Never exit 0 with an open mesh.
+pub fn right_or_refused(run: Run, out: &Path, what: &str, check: impl FnOnce(&MeshReport)) {
+    if run.code == 0 {
+        let report = bspcsg::read_mesh(out).unwrap().report();
+        assert!(report.is_closed_manifold(), "{what}: {report}");
+        check(&report);
+    } else {
+        run.code(2).says(&["not a closed 2-manifold"]);
+        assert!(!out.exists(), "{what}: nothing is written");
+    }
+}
 
 /// A unit tetrahedron as a glTF buffer: 4 float32 positions, then 12 u16 indices.
 pub fn tetra_buffer() -> Vec<u8> {

@@ -5,7 +5,7 @@
 
 use std::ffi::OsStr;
 use std::fs;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -68,6 +68,27 @@ impl Run {
         );
         self
     }
+
+    /// Asserts that stderr holds each of `needles`, showing it otherwise.
+    pub fn says(self, needles: &[&str]) -> Run {
+        for needle in needles {
+            assert!(self.stderr.contains(needle), "{needle}: {}", self.stderr);
+        }
+        self
+    }
+}
+
+/// Runs `bspcsg ARGS… -o OUT`: a command that writes one file.
+pub fn bspcsg_to(args: &[&OsStr], out: &Path) -> Run {
+    bspcsg(args.iter().copied().chain(["-o".as_ref(), out.as_os_str()]))
+}
+
+/// Runs `bspcsg ARGS… -o OUT` and asserts that it exits with `code`, says each of `needles`
+/// and leaves nothing at `out`.
+pub fn refused(args: &[&OsStr], out: &Path, code: i32, needles: &[&str]) -> Run {
+    let run = bspcsg_to(args, out).code(code).says(needles);
+    assert!(!out.exists(), "nothing is written at {}", out.display());
+    run
 }
 
 pub fn bspcsg<I, S>(args: I) -> Run

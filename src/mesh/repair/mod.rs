@@ -343,10 +343,11 @@ mod tests {
         }
     }
 
-    /// A cube less itself turned 1e-4° leaves a few cracks, which the first wider weld closes.
+    /// A cube less itself turned 5e-5° leaves a few cracks, which the first wider weld closes.
+    /// (At 1e-4° it once did too; with the vertices both operands share, it closes at once.)
     #[test]
     fn a_few_cracks_are_still_widened_and_closed() {
-        let (mesh, passes) = turned_difference(Solid::cube(1.0).unwrap(), 1e-4);
+        let (mesh, passes) = turned_difference(Solid::cube(1.0).unwrap(), 5e-5);
         assert!(passes >= 3, "{passes}");
         assert!(mesh.report().is_closed_manifold(), "{}", mesh.report());
     }

@@ -7,14 +7,19 @@
 //! `c1 … cn` becomes `c1 c2 op c3 op … cn op`, a left fold as the spec's pseudocode does, so
 //! the stack stays shallow however wide a node is.
 
+mod bound;
+mod combine;
+
 use glam::{DAffine3, DVec3};
 use smallvec::SmallVec;
 
 use super::shapes::Shape;
 use super::tree::{Frame, NodeId, NodeKind, SmoothKind, Tree};
 use crate::error::{Error, Result};
-use crate::geom::Aabb;
 use crate::solid::BoolOp;
+use bound::combine_bounds;
+pub(crate) use bound::{Bound, map_box};
+use combine::{combine, combine_material, combine_slices};
 
 /// One primitive, placed in the world.
 #[derive(Clone, Debug)]
@@ -56,27 +61,6 @@ pub(crate) enum Instr {
     /// Push `+∞`: the empty set.
     Empty,
     Op(Op),
-}
-
-/// A conservative bound on where a field is small: `{p : f(p) ≤ c}` lies inside
-/// `bbox.expanded(alpha · c)` for every `c ≥ 0`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Bound {
-    pub bbox: Aabb,
-    pub alpha: f64,
-}
-
-impl Bound {
-    /// The bound of the empty set (an empty box; `alpha` is then immaterial).
-    pub(crate) const EMPTY: Bound = Bound {
-        bbox: Aabb::EMPTY,
-        alpha: 1.0,
-    };
-
-    /// The box holding `{f ≤ c}`.
-    pub(crate) fn at(&self, c: f64) -> Aabb {
-        expand(&self.bbox, self.alpha * c)
-    }
 }
 
 /// The flattened, evaluable form of a (sub)tree.
@@ -397,151 +381,6 @@ fn singular() -> Error {
     }
 }
 
-/// How far below `min(a, b)` one smooth fold can reach (and above `max` for the intersection).
-fn smooth_margin(kind: SmoothKind, k: f64) -> f64 {
-    match kind {
-        SmoothKind::Exponential => std::f64::consts::LN_2 / k,
-        SmoothKind::Polynomial => 0.25 * k,
-    }
-}
-
-pub(crate) fn combine_bounds(op: Op, a: Bound, b: Bound) -> Bound {
-    let alpha = a.alpha.max(b.alpha);
-    let (op, m) = match op {
-        Op::Union => (BoolOp::Union, 0.0),
-        Op::Intersect => (BoolOp::Intersection, 0.0),
-        Op::Subtract => (BoolOp::Difference, 0.0),
-        Op::Smooth { op, kind, k } => (op, smooth_margin(kind, k)),
-    };
-    // f ≤ c implies the deciding children are ≤ c + m.
-    let (ab, bb) = (a.at(m), b.at(m));
-    let bbox = match op {
-        BoolOp::Union => ab.union(&bb),
-        BoolOp::Intersection => ab.intersection(&bb),
-        BoolOp::Difference => ab,
-    };
-    Bound { bbox, alpha }
-}
-
-/// Expands a box by `m` on every side; empty stays empty, infinite stays infinite.
-pub(crate) fn expand(b: &Aabb, m: f64) -> Aabb {
-    if b.is_empty() || m == 0.0 {
-        return *b;
-    }
-    Aabb::new(b.min - DVec3::splat(m), b.max + DVec3::splat(m))
-}
-
-/// The world box of a local box; anything unbounded maps to everything (a rotated half-space
-/// has no tighter axis-aligned box).
-pub(crate) fn map_box(m: &DAffine3, b: &Aabb) -> Aabb {
-    if b.is_empty() {
-        return *b;
-    }
-    if !(b.min.is_finite() && b.max.is_finite()) {
-        return Aabb::new(DVec3::NEG_INFINITY, DVec3::INFINITY);
-    }
-    let mut out = Aabb::EMPTY;
-    for i in 0..8 {
-        let c = DVec3::new(
-            if i & 1 == 0 { b.min.x } else { b.max.x },
-            if i & 2 == 0 { b.min.y } else { b.max.y },
-            if i & 4 == 0 { b.min.z } else { b.max.z },
-        );
-        out.grow(m.transform_point3(c));
-    }
-    out
-}
-
-/// Smooth minimum, overflow-free: `−ln(e^(−k·a) + e^(−k·b)) / k` rewritten around the
-/// smaller value as `m − ln(1 + e^(−k·|a−b|)) / k`.
-#[inline]
-fn smin(kind: SmoothKind, k: f64, a: f64, b: f64) -> f64 {
-    match kind {
-        SmoothKind::Exponential => {
-            let diff = (a - b).abs();
-            if diff.is_nan() {
-                // Both infinite (empty operands): nothing to blend.
-                return a.min(b);
-            }
-            a.min(b) - (-k * diff).exp().ln_1p() / k
-        }
-        SmoothKind::Polynomial => {
-            let h = (0.5 + 0.5 * (b - a) / k).clamp(0.0, 1.0);
-            if !h.is_finite() || (b - a).abs() >= k {
-                return a.min(b);
-            }
-            b + (a - b) * h - k * h * (1.0 - h)
-        }
-    }
-}
-
-#[inline]
-fn smax(kind: SmoothKind, k: f64, a: f64, b: f64) -> f64 {
-    -smin(kind, k, -a, -b)
-}
-
-#[inline]
-pub(crate) fn combine(op: Op, a: f64, b: f64) -> f64 {
-    match op {
-        Op::Union => a.min(b),
-        Op::Intersect => a.max(b),
-        Op::Subtract => a.max(-b),
-        Op::Smooth { op, kind, k } => match op {
-            BoolOp::Union => smin(kind, k, a, b),
-            BoolOp::Intersection => smax(kind, k, a, b),
-            BoolOp::Difference => smax(kind, k, a, -b),
-        },
-    }
-}
-
-/// The combined value and the material of the operand that decides it (the nearer one for a
-/// union, the farther for an intersection, the subtracted one where the cut decides).
-#[inline]
-pub(crate) fn combine_material(op: Op, a: (f64, u32), b: (f64, u32)) -> (f64, u32) {
-    let base = match op {
-        Op::Union => BoolOp::Union,
-        Op::Intersect => BoolOp::Intersection,
-        Op::Subtract => BoolOp::Difference,
-        Op::Smooth { op, .. } => op,
-    };
-    let m = match base {
-        BoolOp::Union => {
-            if a.0 <= b.0 {
-                a.1
-            } else {
-                b.1
-            }
-        }
-        BoolOp::Intersection => {
-            if a.0 >= b.0 {
-                a.1
-            } else {
-                b.1
-            }
-        }
-        BoolOp::Difference => {
-            if a.0 >= -b.0 {
-                a.1
-            } else {
-                b.1
-            }
-        }
-    };
-    (combine(op, a.0, b.0), m)
-}
-
-fn combine_slices(op: Op, a: &mut [f64], b: &[f64]) {
-    match op {
-        Op::Union => a.iter_mut().zip(b).for_each(|(x, &y)| *x = x.min(y)),
-        Op::Intersect => a.iter_mut().zip(b).for_each(|(x, &y)| *x = x.max(y)),
-        Op::Subtract => a.iter_mut().zip(b).for_each(|(x, &y)| *x = x.max(-y)),
-        _ => a
-            .iter_mut()
-            .zip(b)
-            .for_each(|(x, &y)| *x = combine(op, *x, y)),
-    }
-}
-
 /// Runs `instrs` (postfix, over `leaves`) at one point: the value and, with `MAT`, the material
 /// deciding it. Shared by the whole program and by the culler's pruned programs.
 #[inline]
@@ -572,34 +411,4 @@ pub(super) fn run_at<const MAT: bool>(instrs: &[Instr], leaves: &[Leaf], p: DVec
         }
     }
     stack.pop().unwrap_or((f64::INFINITY, 0))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn smooth_union_is_stable_and_matches_the_spec() {
-        let k: f64 = 8.0;
-        for &(a, b) in &[(0.1f64, 0.3f64), (-0.2, 0.05), (1.0, 1.0)] {
-            let spec: f64 = -((-k * a).exp() + (-k * b).exp()).ln() / k;
-            let ours = smin(SmoothKind::Exponential, k, a, b);
-            assert!((spec - ours).abs() < 1e-12, "{a} {b}: {spec} vs {ours}");
-        }
-        // The naive form overflows here; ours returns min − ln2/k.
-        let big = smin(SmoothKind::Exponential, 1000.0, -5.0, -5.0);
-        assert!((big - (-5.0 - std::f64::consts::LN_2 / 1000.0)).abs() < 1e-12);
-        assert_eq!(smin(SmoothKind::Exponential, 10.0, 1e300, 1e-3), 1e-3);
-    }
-
-    #[test]
-    fn polynomial_smin_matches_seed_000() {
-        let k: f64 = 0.5;
-        for &(left, right) in &[(0.1f64, 0.3f64), (-0.2, 0.05), (1.0, 2.0)] {
-            let h: f64 = (0.5 + (right - left) / (2.0 * k)).clamp(0.0, 1.0);
-            let seed = right + (left - right) * h - k * h * (1.0 - h);
-            let ours = smin(SmoothKind::Polynomial, k, left, right);
-            assert!((seed - ours).abs() < 1e-12);
-        }
-    }
 }
