@@ -10,6 +10,9 @@ use crate::geom::is_zero_area;
 use crate::geom::triangulate::{ear_clip_boundary, triangulate_boundary};
 use crate::polygon::Polygon;
 
+/// A region's simplified boundary and its triangles (`None` where triangulation failed).
+type Triangulated = (Vec<(u32, u32)>, Option<Vec<[u32; 3]>>);
+
 /// Rings of one source in one plane, connected through shared edges.
 struct Region {
     rings: Vec<u32>,
@@ -27,6 +30,12 @@ pub(super) fn triangulate_regions(
     pins: &[bool],
 ) -> (Vec<[u32; 3]>, Vec<u32>) {
     let mut regions = group(positions, rings, polygons, delta);
+    // Per region kept whole from the previous round, its simplified boundary and what that
+    // triangulated to: a crack-heavy pass splits a few regions per round and redoes the rest,
+    // whose boundaries mostly come out the same (triangulating them again was most of the
+    // quick pass at 256×128).
+    let mut carried: Vec<Option<Triangulated>> = Vec::new();
+    carried.resize_with(regions.len(), || None);
     loop {
         // A region that is one triangle passes through as it is: nothing to merge and nothing
         // to retriangulate (most of a real model, far from the cut). Its corners are pinned, so
@@ -54,9 +63,11 @@ pub(super) fn triangulate_regions(
             .par_iter()
             .zip(&boundaries)
             .zip(&lone)
-            .map(|((r, b), l)| match l {
-                Some(_) => Some(Vec::new()),
-                None => triangulate_boundary(positions, r.normal, b),
+            .zip(&mut carried)
+            .map(|(((r, b), l), c)| match (l, c.take()) {
+                (Some(_), _) => Some(Vec::new()),
+                (None, Some((before, result))) if before == *b => result,
+                (None, _) => triangulate_boundary(positions, r.normal, b),
             })
             .collect();
         let failed: Vec<usize> = (0..regions.len())
@@ -82,15 +93,19 @@ pub(super) fn triangulate_regions(
         // A merged region whose boundary crosses itself: keep its polygons separate and redo
         // the pass, since neighbours may have dropped vertices these polygons still use.
         let mut split = Vec::with_capacity(regions.len());
-        for (i, r) in regions.into_iter().enumerate() {
+        carried.clear();
+        let done = boundaries.into_iter().zip(results);
+        for (i, (r, (b, result))) in regions.into_iter().zip(done).enumerate() {
             if failed.binary_search(&i).is_ok() {
                 split.extend(r.rings.iter().map(|&ring| Region {
                     rings: vec![ring],
                     source: r.source,
                     normal: r.normal,
                 }));
+                carried.resize_with(split.len(), || None);
             } else {
                 split.push(r);
+                carried.push(Some((b, result)));
             }
         }
         regions = split;
