@@ -37,34 +37,44 @@ fn cube_minus_cube_rotated_a_millionth_degree() {
 }
 
 /// The unit cube minus itself turned about a skew axis through a corner, by angles whose
-/// facets cross their twins at 2e-7 … 3.5e-11 rad. Each operand cuts its facets by the twin's
+/// facets cross their twins at 5e-6 … 3.5e-11 rad. Each operand cuts its facets by the twin's
 /// plane at its own edges, a rounding error over the angle apart (far beyond the weld) unless
 /// the vertex on the same three planes is shared; the polygons' volume is then the first-order
 /// one, θ/2 ∫ |(ŵ × x)·n| dA over the cube's faces = 1.4576096e-2 × θ in degrees (quadrature).
-/// Open: the polygons' volume is 12 % high at 1e-5° and 1e-6° (so only smaller angles are
-/// checked), and the mesh's is 4–6 % below the polygons' at every angle here (more at 2e-9°,
-/// where slivers thinner than the weld are dropped), so the mesh's volume is not asserted.
+/// At 3e-4° and 1e-4° (faces 5e-6 and 1.7e-6 rad apart, each cube's corners 1e-11 and 1e-12 off
+/// the other's faces) a vertex counts as on a nearly parallel plane only near the crossing
+/// line (`ON_BAND_BELOW` in `polygon/mod.rs`), and both the solid and the mesh have the
+/// first-order volume. Open: at 1e-5° and 1e-6° the corners lie 1e-14 … 1e-16 off the twin
+/// faces, within the planes' rounding noise, and the polygons' volume is 3–13 % high (so only
+/// 3e-4°, 1e-4° and angles from 1e-7° down are checked); from 1e-7° down the mesh's volume is
+/// 4–6 % below the polygons' (the first repair pass leaves a crack at a corner, and the wider
+/// weld that closes it flattens two wedges 3e-10 thick), so it is asserted only at 3e-4° and 1e-4°.
 #[test]
 fn cube_minus_cube_turned_about_a_skew_axis() {
     let cube = Solid::cube(1.0)
         .unwrap()
         .translate(DVec3::splat(0.5))
         .unwrap();
-    for degrees in [1e-5, 1e-7, 1e-8, 5e-9, 3e-9, 2e-9] {
+    for degrees in [3e-4, 1e-4, 1e-5, 1e-7, 1e-8, 5e-9, 3e-9, 2e-9] {
         let turned = cube
             .clone()
             .rotate_axis_angle(DVec3::new(0.3, 1.0, 0.2), degrees)
             .unwrap();
         let result = &cube - &turned;
         let what = format!("cube - cube turned {degrees:e}°");
+        let mesh = result.to_mesh();
         if degrees >= 5e-9 {
-            assert_clean(&result.to_mesh(), &what);
+            assert_clean(&mesh, &what);
         } else {
             // Open: closed, but 2 needles at 3e-9°.
-            assert_closed_manifold(&result.to_mesh(), &what);
+            assert_closed_manifold(&mesh, &what);
         }
-        if degrees <= 1e-7 {
-            assert_volume(result.volume(), 1.4576096e-2 * degrees, 1e-4, &what);
+        let want = 1.4576096e-2 * degrees;
+        if degrees <= 1e-7 || degrees >= 1e-4 {
+            assert_volume(result.volume(), want, 1e-4, &what);
+        }
+        if degrees >= 1e-4 {
+            assert_volume(mesh.volume(), want, 1e-4, &format!("{what}, mesh"));
         }
     }
 }
