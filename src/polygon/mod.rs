@@ -221,12 +221,12 @@ impl Polygon {
     /// coplanar with its own plane whatever its vertices say (see [`Plane::is_same_or_flipped`]),
     /// and with any plane all its vertices lie within `eps` of.
     ///
-    /// Otherwise, where the planes cross at less than [`ON_BAND_BELOW`], a vertex counts as on the
-    /// plane within `eps` times the sine of the angle between them, not `eps`: where they cross
-    /// at a tiny angle α, `eps` would reach `eps / α` across the polygon, and the cut would run
-    /// through a vertex that far from the line where the planes cross while the other operand,
-    /// cut along that line, leaves a slit between (10⁻⁹° on a box: a band 0.6 wide). Vertices on
-    /// the plane go to both pieces. An edge from a front to a back vertex is cut at a point
+    /// Otherwise, where the planes cross at a sine below 10⁻³ (`ON_BAND_BELOW`), a vertex counts
+    /// as on the plane within `eps` times the sine of the angle between them, not `eps`: where
+    /// they cross at a tiny angle α, `eps` would reach `eps / α` across the polygon, and the cut
+    /// would run through a vertex that far from the line where the planes cross while the other
+    /// operand, cut along that line, leaves a slit between (10⁻⁹° on a box: a band 0.6 wide).
+    /// Vertices on the plane go to both pieces. An edge from a front to a back vertex is cut at a point
     /// every polygon sharing the edge computes the same, bit for bit: interpolated, or where the
     /// edge runs nearly along the plane (and the interpolation is off by a rounding error over
     /// that angle), the `meet` of the planes the edge lies in and `plane`, which the other
