@@ -12,7 +12,7 @@
 /// one on an edge of more than two triangles (a repeated start) is not a disc. A vertex no
 /// triangle uses is not one either.
 ///
-/// Costs one counting pass over the corners and a sort of each vertex's few link edges: far
+/// Costs one counting pass over the corners and a walk around each vertex's few link edges: far
 /// less than pairing every half-edge through a sort by edge and a union–find of the corners.
 pub(super) fn one_disc(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<bool> {
     // A counting sort of the corners by vertex: `end[v]` counts up to the end of v's run, and
@@ -28,33 +28,43 @@ pub(super) fn one_disc(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<bool>
     }
     end[vertex_count] = sum;
     let mut links = vec![(0u32, 0u32); triangles.len() * 3];
-    for t in triangles {
-        for k in 0..3 {
-            let at = &mut end[t[k] as usize];
+    let mut repeats = false;
+    for &[a, b, c] in triangles {
+        repeats |= a == b || b == c || a == c;
+        for (v, next, prev) in [(a, b, c), (b, c, a), (c, a, b)] {
+            let at = &mut end[v as usize];
             *at -= 1;
-            links[*at as usize] = (t[(k + 1) % 3], t[(k + 2) % 3]);
+            links[*at as usize] = (next, prev);
         }
     }
-    end.windows(2)
-        .enumerate()
-        .map(|(v, w)| one_cycle(v as u32, &links[w[0] as usize..w[1] as usize]))
-        .collect()
+    let mut disc: Vec<bool> = end
+        .windows(2)
+        .map(|w| one_cycle(&links[w[0] as usize..w[1] as usize]))
+        .collect();
+    if repeats {
+        // A triangle through a vertex twice is no part of a disc (its link would pass through
+        // the vertex itself).
+        for t in triangles {
+            if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+                for &v in t {
+                    disc[v as usize] = false;
+                }
+            }
+        }
+    }
+    disc
 }
 
-/// Whether the directed edges `link` of vertex `v` start at distinct vertices and form one
-/// cycle (none through `v` itself: a triangle repeating a vertex is no disc).
+/// Whether the directed edges `link` start at distinct vertices and form one cycle.
 ///
 /// Walks from the first edge, each step to the first edge starting where the last one ended.
 /// Where that comes back to the first edge's start after exactly `link.len()` steps, the
 /// edges met are all distinct (a repeat would loop without coming back) and so are their starts
 /// (the first edge with a start is the only one ever taken from there): every edge, once.
-fn one_cycle(v: u32, link: &[(u32, u32)]) -> bool {
+fn one_cycle(link: &[(u32, u32)]) -> bool {
     let Some(&(a, mut at)) = link.first() else {
         return false;
     };
-    if link.iter().any(|e| e.0 == v || e.1 == v) {
-        return false;
-    }
     let mut steps = 1;
     while at != a {
         match link.iter().find(|e| e.0 == at) {

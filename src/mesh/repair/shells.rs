@@ -231,8 +231,8 @@ fn fan_vertices(triangles: &[[u32; 3]], twin: &[u32], disc: &[bool]) -> Vec<u32>
     }
     if split {
         let mut fans = DisjointSets::new(n);
-        for h in 0..n {
-            if fan[h] != u32::MAX {
+        for (h, &f) in fan.iter().enumerate() {
+            if f != u32::MAX {
                 continue;
             }
             let prev = h / 3 * 3 + (h % 3 + 2) % 3;
