@@ -348,7 +348,12 @@ fn split_cell(ids: Vec<u32>, plane: &Plane, eps: f64, arena: &mut Arena) -> (Vec
             back.push(id);
             continue;
         }
-        match arena.poly(id).split(plane, eps) {
+        // A strict span with no vertex near the plane takes the quick axis cut.
+        let poly = arena.poly(id);
+        let quick = (b.min[axis] < at - eps && b.max[axis] > at + eps)
+            .then(|| poly.split_axis(plane, axis, eps))
+            .flatten();
+        match quick.unwrap_or_else(|| poly.split(plane, eps)) {
             Split::Front => front.push(id),
             Split::Back => back.push(id),
             Split::Coplanar if arena.poly(id).plane().normal.dot(plane.normal) > 0.0 => {
