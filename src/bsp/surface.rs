@@ -154,13 +154,13 @@ impl<'a> Surface<'a> {
         if grazed {
             return None;
         }
-        Some(if crossings % 2 == 0 {
-            q_label
-        } else {
+        Some(if crossings % 2 == 1 {
             match q_label {
                 Label::Inside => Label::Outside,
                 Label::Outside => Label::Inside,
             }
+        } else {
+            q_label
         })
     }
 
