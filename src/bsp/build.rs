@@ -96,9 +96,11 @@ impl Tree {
     /// the boxes of the other operand's polygons that come near this surface: only those are
     /// clipped, and their fragments never reach an unbuilt cell.
     pub fn build_focused(polygons: &[Polygon], eps: f64, focus: Option<&[Aabb]>) -> Tree {
+        // Room for about what the trees of real models end with (half a node and half a stored
+        // polygon per polygon of the solid): regrowing from empty was 5 % of the build.
         let mut tree = Tree {
-            nodes: Vec::new(),
-            polygons: Vec::new(),
+            nodes: Vec::with_capacity(polygons.len() / 2),
+            polygons: Vec::with_capacity(polygons.len() / 2),
             root: Link::Leaf(Label::Outside),
             eps,
         };
