@@ -541,9 +541,11 @@ fn needle_of_a_cube_turned_a_little_in_a_slab() {
 /// 0.125 wide about one centre — a cube, a bar 0.5 long turned 11.25° about a near-diagonal
 /// axis, a bar 1 long along y, a bar 1.125 long along z — leaves one needle at step 3 on a closed
 /// genus-0 result. Not the near-coplanar kind (the turned bar's faces are 9° or more off every
-/// other face): the needle pass (`mesh/needles.rs`) does not remove it. Not located yet.
+/// other face): the turned bar's face passes 1.8e-6 from the cube's corner, leaving a speck
+/// 1.2·10⁻⁶ of its shell's diagonal on a side (area 0.74·10⁻¹² d²) that every flip and collapse
+/// removed by moving the surface 1.06·10⁻⁶ d, just past the needle pass's old bound of 10⁻⁶ d.
+/// Removed since the bound covers a speck's shortest edge (`SPECK_MOVE`, `mesh/needles.rs`).
 #[test]
-#[ignore = "open: a needle left by a union of bars about one centre, one turned 11.25°"]
 fn needle_of_bars_united_about_one_centre_one_turned() {
     replay_with(
         &[

@@ -49,8 +49,9 @@ pub(crate) fn solid_angle(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> f64
 /// 10⁻³ fillet on a 10³ model has triangles of area 10⁻¹¹ d²).
 pub(crate) const NEEDLE_AREA: f64 = 1e-12;
 
-/// The farthest, as a fraction of the shell's diagonal, that removing a needle may move the
-/// surface: `√NEEDLE_AREA`, the size of the largest speck that counts as a needle.
+/// The size, as a fraction of the shell's diagonal, of a speck that counts as a needle:
+/// `√NEEDLE_AREA`. Removing a needle may move the surface twice this (a speck's shortest edge
+/// can be up to 1.52 times it; see `mesh::needles`).
 pub(crate) const MAX_MOVE: f64 = 1e-6;
 
 /// True when triangle `c` is a needle in a shell whose bounding-box diagonal is `diagonal`.

@@ -7,7 +7,7 @@
 //! of a grid vertex. Both are valid topology but useless geometry, and slicers, FEM meshers and
 //! manifold3d treat them as defects.
 //!
-//! Two local operations remove them, each moving the surface by at most [`MAX_MOVE`] × d:
+//! Two local operations remove them, each moving the surface by at most [`SPECK_MOVE`] × d:
 //!
 //! * **Flip** the needle's longest edge `ab` (apex `v`, neighbour `bac`) to `vc`. The new
 //!   triangles lie in the tetrahedron `abcv`, whose every point is within the apex height of
@@ -30,6 +30,15 @@ use smallvec::SmallVec;
 use super::Mesh;
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, MAX_MOVE, NEEDLE_AREA, Tolerance, is_zero_area};
+
+/// The farthest, as a fraction of the shell's diagonal `d`, that removing one needle may move
+/// the surface. Collapsing a speck's shortest edge moves a vertex by up to that edge's length,
+/// and a triangle under `NEEDLE_AREA × d²` may have a shortest edge up to
+/// `√(4/√3 · NEEDLE_AREA) d ≈ 1.52·10⁻⁶ d` (an equilateral speck). [`MAX_MOVE`] alone
+/// (`√NEEDLE_AREA`) left a speck about 1.2·10⁻⁶ d on a side where a turned bar's face passes a
+/// hair from a box's corner, each way of removing it moving the surface 1.06·10⁻⁶ d. Twice
+/// `MAX_MOVE` covers every speck's shortest edge, with room for the volume-keeping offset.
+const SPECK_MOVE: f64 = 2.0 * MAX_MOVE;
 
 /// Removes the needles it can from `mesh`, keeping it closed and oriented. Returns how many
 /// needles (by the thresholds used here) remain; 0 also where the mesh is left alone: triangles
@@ -164,7 +173,7 @@ impl Work {
             around,
             shell,
             needle_area: diag.iter().map(|d| NEEDLE_AREA * d * d).collect(),
-            max_move: diag.iter().map(|d| MAX_MOVE * d).collect(),
+            max_move: diag.iter().map(|d| SPECK_MOVE * d).collect(),
             tolerance: diag.iter().map(|d| Tolerance::RELATIVE * d).collect(),
             shell_tris,
         }

@@ -144,7 +144,7 @@ fn sample<S: Source + ?Sized>(field: &Field<S>, frame: &LeafFrame, w: &mut Work)
     }
     w.values.resize(frame.npts(), 0.0);
     field.eval_batch(&mut w.scratch, &w.points, &mut w.values);
-    // A point inside by less than a hair (the farthest the needle pass may move the surface)
+    // A point inside by less than a hair (a needle's size, half what the needle pass may move)
     // counts as outside: where the surface grazes a row of grid points, their values a hair
     // below zero made a shell of its own, a rod 10⁻⁶ of the grid across whose end caps were
     // needles no collapse could remove without changing the rod's topology. It becomes a hair
