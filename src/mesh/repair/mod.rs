@@ -20,6 +20,7 @@
 //!    manifold shells ([`shells`]).
 
 mod cracks;
+mod discs;
 mod edges;
 mod indexed;
 mod regions;

@@ -2,6 +2,7 @@
 
 use glam::DVec3;
 
+use super::discs::one_disc;
 use super::edges::{sort_by_edge, undirected};
 use crate::disjoint_sets::DisjointSets;
 use crate::mesh::Mesh;
@@ -22,27 +23,50 @@ use crate::mesh::Mesh;
 /// leaves fewer edges whose pairs share their vertices: the chain's vertices then split, every
 /// edge of the output is used by exactly two triangles.
 ///
+/// A vertex whose triangles already form one closed disc (nearly all of them: see [`one_disc`])
+/// keeps its one vertex, and the half-edges between two such vertices need no twin found: only
+/// the rest are sorted by edge and paired.
+///
 /// Also returns the end points of half-edges left without a twin: the cracks.
 pub(super) fn split_into_shells(
     positions: Vec<DVec3>,
     (triangles, sources): (Vec<[u32; 3]>, Vec<u32>),
 ) -> (Mesh, Vec<DVec3>) {
+    let disc = one_disc(&triangles, positions.len());
+    split_around_discs(positions, (triangles, sources), &disc)
+}
+
+/// [`split_into_shells`] with `disc` from [`one_disc`]: around a disc vertex every edge is used
+/// once each way and its corners are one fan, so a half-edge between two of them needs no twin
+/// found (most of a boolean's output).
+fn split_around_discs(
+    positions: Vec<DVec3>,
+    (triangles, sources): (Vec<[u32; 3]>, Vec<u32>),
+    disc: &[bool],
+) -> (Mesh, Vec<DVec3>) {
     let n = triangles.len() * 3;
     let from = |h: usize| triangles[h / 3][h % 3];
     let to = |h: usize| triangles[h / 3][(h % 3 + 1) % 3];
-    // Half-edges sorted by their undirected edge, as (min << 32 | max, half-edge).
-    let mut keyed: Vec<(u64, u32)> = (0..n)
-        .map(|h| (undirected(from(h), to(h)), h as u32))
-        .collect();
+    // The half-edges not between two discs, sorted by their undirected edge, as
+    // (min << 32 | max, half-edge).
+    let mut keyed: Vec<(u64, u32)> = Vec::new();
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            if !(disc[a as usize] && disc[b as usize]) {
+                keyed.push((undirected(a, b), (3 * t + k) as u32));
+            }
+        }
+    }
     sort_by_edge(&mut keyed, positions.len());
     let order: Vec<u32> = keyed.iter().map(|&(_, h)| h).collect();
     let mut twin: Vec<u32> = vec![u32::MAX; n];
     // Edges used by more than two triangles, each as its half-edges sorted by angle.
     let mut crowded: Vec<Vec<(u32, bool)>> = Vec::new();
     let mut i = 0;
-    while i < n {
+    while i < keyed.len() {
         let mut j = i + 1;
-        while j < n && keyed[j].0 == keyed[i].0 {
+        while j < keyed.len() && keyed[j].0 == keyed[i].0 {
             j += 1;
         }
         let group = &order[i..j];
@@ -60,7 +84,7 @@ pub(super) fn split_into_shells(
     for (g, around) in crowded.iter().enumerate() {
         pair_around(around, across_solid[g], &mut twin);
     }
-    let mut corner_vertex = fan_vertices(&triangles, &twin);
+    let mut corner_vertex = fan_vertices(&triangles, &twin, disc);
     if !crowded.is_empty() {
         let pinched = pinched_edges(&crowded, &corner_vertex);
         if pinched.iter().any(|&p| p > 0) {
@@ -88,7 +112,7 @@ pub(super) fn split_into_shells(
                     pair_around(around, false, &mut flipped_twin);
                 }
             }
-            let flipped_vertex = fan_vertices(&triangles, &flipped_twin);
+            let flipped_vertex = fan_vertices(&triangles, &flipped_twin, disc);
             let flipped_pinched = pinched_edges(&crowded, &flipped_vertex);
             // Per chain: how many pinched edges each pairing leaves.
             let mut score = vec![(0usize, 0usize); crowded.len()];
@@ -108,7 +132,7 @@ pub(super) fn split_into_shells(
                     }
                 }
                 twin = flipped_twin;
-                corner_vertex = fan_vertices(&triangles, &twin);
+                corner_vertex = fan_vertices(&triangles, &twin, disc);
             }
         }
     }
@@ -116,17 +140,35 @@ pub(super) fn split_into_shells(
     let mut renumber: Vec<u32> = vec![u32::MAX; n];
     let mut out_positions = Vec::with_capacity(positions.len());
     let mut out_triangles = vec![[0u32; 3]; triangles.len()];
-    for h in 0..n {
-        let fan = corner_vertex[h] as usize;
-        if renumber[fan] == u32::MAX {
-            renumber[fan] = out_positions.len() as u32;
-            out_positions.push(positions[from(h) as usize]);
+    for ((tri, out), fans) in triangles
+        .iter()
+        .zip(&mut out_triangles)
+        .zip(corner_vertex.chunks_exact(3))
+    {
+        for k in 0..3 {
+            let fan = fans[k] as usize;
+            if renumber[fan] == u32::MAX {
+                renumber[fan] = out_positions.len() as u32;
+                out_positions.push(positions[tri[k] as usize]);
+            }
+            out[k] = renumber[fan];
         }
-        out_triangles[h / 3][h % 3] = renumber[fan];
     }
-    let cracks = (0..n)
-        .filter(|&h| twin[h] == u32::MAX)
-        .flat_map(|h| [positions[from(h) as usize], positions[to(h) as usize]])
+    // Only half-edges with a twin to find can lack one; listed in half-edge order.
+    let mut open: Vec<u32> = order
+        .iter()
+        .copied()
+        .filter(|&h| twin[h as usize] == u32::MAX)
+        .collect();
+    open.sort_unstable();
+    let cracks = open
+        .iter()
+        .flat_map(|&h| {
+            [
+                positions[from(h as usize) as usize],
+                positions[to(h as usize) as usize],
+            ]
+        })
         .collect();
     let mesh = Mesh {
         positions: out_positions,
@@ -148,6 +190,11 @@ pub(super) fn split_into_shells(
 ///
 /// Triangles must be in range and repeat no vertex (as readers leave them).
 pub(crate) fn split_touching(mesh: &Mesh) -> Option<Mesh> {
+    // Nearly every file: each vertex one disc, so nothing to split and no copy to make.
+    let disc = one_disc(&mesh.triangles, mesh.positions.len());
+    if mesh.triangles.iter().flatten().all(|&v| disc[v as usize]) {
+        return None;
+    }
     let mut used = vec![false; mesh.positions.len()];
     for t in &mesh.triangles {
         for &v in t {
@@ -155,27 +202,52 @@ pub(crate) fn split_touching(mesh: &Mesh) -> Option<Mesh> {
         }
     }
     let used = used.iter().filter(|&&u| u).count();
-    let (split, cracks) = split_into_shells(
+    let (split, cracks) = split_around_discs(
         mesh.positions.clone(),
         (mesh.triangles.clone(), mesh.sources.clone()),
+        &disc,
     );
     (split.positions.len() > used && cracks.is_empty()).then_some(split)
 }
 
 /// For each corner (half-edge `h` sits at vertex `from(h)`), the fan it belongs to, named by
-/// its root corner. Around a vertex, the corner of the previous half-edge's twin continues the
-/// fan.
-fn fan_vertices(triangles: &[[u32; 3]], twin: &[u32]) -> Vec<u32> {
+/// its first corner. Around a vertex, the corner of the previous half-edge's twin continues the
+/// fan; around a `disc` vertex all its corners are one fan (see [`one_disc`]).
+fn fan_vertices(triangles: &[[u32; 3]], twin: &[u32], disc: &[bool]) -> Vec<u32> {
     let n = triangles.len() * 3;
-    let mut fans = DisjointSets::new(n);
-    for h in 0..n {
-        let prev = h / 3 * 3 + (h % 3 + 2) % 3;
-        let t = twin[prev];
-        if t != u32::MAX {
-            fans.union(h, t as usize);
+    let mut fan = vec![u32::MAX; n];
+    let mut first = vec![u32::MAX; disc.len()];
+    let mut split = false;
+    for (h, &v) in triangles.iter().flatten().enumerate() {
+        let v = v as usize;
+        if disc[v] {
+            if first[v] == u32::MAX {
+                first[v] = h as u32;
+            }
+            fan[h] = first[v];
+        } else {
+            split = true;
         }
     }
-    (0..n).map(|h| fans.find(h) as u32).collect()
+    if split {
+        let mut fans = DisjointSets::new(n);
+        for (h, &f) in fan.iter().enumerate() {
+            if f != u32::MAX {
+                continue;
+            }
+            let prev = h / 3 * 3 + (h % 3 + 2) % 3;
+            let t = twin[prev];
+            if t != u32::MAX {
+                fans.union(h, t as usize);
+            }
+        }
+        for (h, f) in fan.iter_mut().enumerate() {
+            if *f == u32::MAX {
+                *f = fans.find(h) as u32;
+            }
+        }
+    }
+    fan
 }
 
 /// For each crowded edge, how many of its half-edges share both output vertices with another
