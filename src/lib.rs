@@ -116,7 +116,7 @@ mod topology;
 pub use error::{Error, MeshDefect, Result};
 pub use geom::{Aabb, MAX_COORDINATE, Plane, Side, Tolerance};
 pub use io::{
-    Format, MAX_BUFFER_BYTES, MAX_READ_TRIANGLES, OutFile, ParseFormatError,
+    Format, MAX_BUFFER_BYTES, MAX_READ_TRIANGLES, OutFile, ParseFormatError, as_read_back_from,
     cleanup_interrupted_writes, encode_mesh, read_mesh, read_mesh_as, read_mesh_from_bytes,
     read_solid, referenced_files, write_mesh, write_mesh_as,
 };

@@ -262,3 +262,43 @@ fn signal_during_export(signal: &str, code: i32) {
     }
     assert!(interrupted > 0, "no run was interrupted");
 }
+
+/// A closed result with a feature finer than float32 resolves (a box 10⁻⁹ thick at x = 1) is
+/// written as asked, but STL and glTF round it away, so read back it is open: writing it to
+/// those formats warns, and the warning is true; to OBJ, which keeps every coordinate, it
+/// neither warns nor opens.
+#[test]
+fn a_result_finer_than_float32_warns_when_written_to_stl() {
+    let dir = Scratch::new("float32");
+    let slab = bspcsg::Solid::cuboid(glam::DVec3::new(1e-9, 1.0, 1.0))
+        .unwrap()
+        .translate(glam::DVec3::X)
+        .unwrap()
+        .to_mesh();
+    assert!(slab.report().is_closed_manifold());
+    let input = dir.path("slab.obj");
+    bspcsg::write_mesh(&input, &slab, &[]).unwrap();
+    for name in ["slab.stl", "slab.glb"] {
+        let out = dir.path(name);
+        bspcsg([
+            "convert".as_ref(),
+            input.as_os_str(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ])
+        .ok()
+        .says(&["warning", "float32", "not a closed 2-manifold"]);
+        let back = read_mesh(&out).unwrap().report();
+        assert!(!back.is_closed_manifold(), "{name}: {back}");
+    }
+    let out = dir.path("copy.obj");
+    let run = bspcsg([
+        "convert".as_ref(),
+        input.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+    .ok();
+    assert!(!run.stderr.contains("warning"), "{}", run.stderr);
+    assert!(read_mesh(&out).unwrap().report().is_closed_manifold());
+}

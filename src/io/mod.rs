@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 use crate::error::{Error, MeshDefect, Result};
+use crate::geom::is_zero_area;
 use crate::mesh::{FromMeshOptions, Material, Mesh};
 use crate::solid::Solid;
 use crate::topology::check_face_indices;
@@ -240,6 +241,10 @@ pub fn read_solid(path: impl AsRef<Path>, options: &FromMeshOptions) -> Result<S
 /// `.mtl` file (none when `materials` is empty), glTF as one primitive and material per source
 /// id, and STL ignores them.
 ///
+/// STL and glTF store float32 coordinates: a feature finer than that (a slab 10⁻⁹ thick at
+/// x = 1) reads back open. [`as_read_back_from`] gives the mesh a reader will get, to check
+/// before writing (the command line warns).
+///
 /// The output is replaced atomically: the content goes to temporary files in the same
 /// directory, renamed over the destination only once complete. On error no temporary file
 /// remains and an existing destination is left untouched. (For the two-file formats the
@@ -374,6 +379,49 @@ pub fn referenced_files(input: &Path) -> Vec<PathBuf> {
         }
     }
     names.into_iter().map(|n| dir.join(n)).collect()
+}
+
+/// `mesh` as a reader gives it back from a file written in `format`, or `None` when it reads
+/// back as it is. Bit-identical positions become one vertex, as [`Mesh::as_read_back`] says;
+/// where the format stores float32 coordinates (STL, glTF, GLB), positions are first rounded
+/// to float32, so vertices closer than its resolution become one and triangles thinner than it
+/// lose their area. A closed mesh with such features, which a boolean can make from parts a
+/// hair apart, reads back open; OBJ keeps every coordinate.
+///
+/// ```
+/// use bspcsg::{Format, Mesh, as_read_back_from, glam::DVec3};
+/// // A box 10⁻⁹ thick at x = 1: in float32 its two sides are one plane.
+/// let slab = bspcsg::Solid::cuboid(DVec3::new(1e-9, 1.0, 1.0))?
+///     .translate(DVec3::X)?
+///     .to_mesh();
+/// assert!(slab.report().is_closed_manifold());
+/// assert!(as_read_back_from(&slab, Format::Obj).is_none());
+/// let back = as_read_back_from(&slab, Format::Stl).expect("its sides merge");
+/// assert!(!back.report().is_closed_manifold());
+/// # Ok::<(), bspcsg::Error>(())
+/// ```
+#[must_use]
+pub fn as_read_back_from(mesh: &Mesh, format: Format) -> Option<Mesh> {
+    if format == Format::Obj {
+        return mesh.as_read_back();
+    }
+    let rounded = Mesh {
+        positions: mesh
+            .positions
+            .iter()
+            .map(|p| p.as_vec3().as_dvec3())
+            .collect(),
+        ..mesh.clone()
+    };
+    let flattened = rounded.triangles.iter().any(|t| {
+        t.iter().all(|&i| (i as usize) < rounded.positions.len())
+            && is_zero_area(t.map(|i| rounded.positions[i as usize]))
+    });
+    // No two rounded positions are one, so neither are the exact ones.
+    match rounded.as_read_back() {
+        Some(welded) => Some(welded),
+        None => flattened.then_some(rounded),
+    }
 }
 
 /// The bytes a writer produced: the main file and any companions (`.mtl`, `.bin`).

@@ -150,9 +150,21 @@ pub(crate) fn finish(
             "bspcsg: warning: {} is not a closed 2-manifold: {report}",
             out.display()
         ));
-    } else if let Some(back) = mesh.as_read_back() {
+    } else if let Some(back) = bspcsg::as_read_back_from(mesh, format) {
         let back = back.report();
-        if !back.is_closed_manifold() {
+        let exact_closed = || {
+            mesh.as_read_back()
+                .is_none_or(|m| m.report().is_closed_manifold())
+        };
+        if !back.is_closed_manifold() && format != Format::Obj && exact_closed() {
+            print_stderr(&format!(
+                "bspcsg: warning: {} stores float32 coordinates, and the result has features \
+                 finer than float32 resolves there (vertices that round to one, triangles that \
+                 lose their area), so read back it is not a closed 2-manifold: {back} \
+                 (OBJ keeps every coordinate)",
+                out.display()
+            ));
+        } else if !back.is_closed_manifold() {
             print_stderr(&format!(
                 "bspcsg: warning: {}: its shells touch along {} edges and at {} vertices where \
                  they cannot be told apart once read back, so read back it is not a closed \
