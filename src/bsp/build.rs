@@ -96,9 +96,11 @@ impl Tree {
     /// the boxes of the other operand's polygons that come near this surface: only those are
     /// clipped, and their fragments never reach an unbuilt cell.
     pub fn build_focused(polygons: &[Polygon], eps: f64, focus: Option<&[Aabb]>) -> Tree {
+        // Room for about what the trees of real models end with (half a node and half a stored
+        // polygon per polygon of the solid): regrowing from empty was 5 % of the build.
         let mut tree = Tree {
-            nodes: Vec::new(),
-            polygons: Vec::new(),
+            nodes: Vec::with_capacity(polygons.len() / 2),
+            polygons: Vec::with_capacity(polygons.len() / 2),
             root: Link::Leaf(Label::Outside),
             eps,
         };
@@ -348,7 +350,12 @@ fn split_cell(ids: Vec<u32>, plane: &Plane, eps: f64, arena: &mut Arena) -> (Vec
             back.push(id);
             continue;
         }
-        match arena.poly(id).split(plane, eps) {
+        // A strict span with no vertex near the plane takes the quick axis cut.
+        let poly = arena.poly(id);
+        let quick = (b.min[axis] < at - eps && b.max[axis] > at + eps)
+            .then(|| poly.split_axis(plane, axis, eps))
+            .flatten();
+        match quick.unwrap_or_else(|| poly.split(plane, eps)) {
             Split::Front => front.push(id),
             Split::Back => back.push(id),
             Split::Coplanar if arena.poly(id).plane().normal.dot(plane.normal) > 0.0 => {

@@ -7,6 +7,7 @@ use rayon::prelude::*;
 
 use super::{Kind, Label, Link, Surface, Tree};
 use crate::geom::Aabb;
+use crate::hash::FxHashMap;
 use crate::polygon::{Polygon, Split};
 
 /// Where a polygon lying in a face node's plane goes.
@@ -56,9 +57,9 @@ impl Tree {
     ) -> Vec<Clipped> {
         if polygons.len() < PARALLEL_MIN {
             let mut out = Vec::with_capacity(polygons.len());
-            let mut stack = Vec::new();
+            let mut scratch = Scratch::default();
             for p in polygons {
-                self.clip_one(p, keep, rule, surface, &mut stack, &mut out);
+                self.clip_one(p, keep, rule, surface, &mut scratch, &mut out);
             }
             return out;
         }
@@ -67,9 +68,9 @@ impl Tree {
             .chunks(CHUNK)
             .map(|chunk| {
                 let mut out = Vec::with_capacity(chunk.len());
-                let mut stack = Vec::new();
+                let mut scratch = Scratch::default();
                 for p in chunk {
-                    self.clip_one(p, keep, rule, surface, &mut stack, &mut out);
+                    self.clip_one(p, keep, rule, surface, &mut scratch, &mut out);
                 }
                 out
             })
@@ -83,9 +84,14 @@ impl Tree {
         keep: Label,
         rule: Coplanar,
         surface: &Surface,
-        stack: &mut Vec<Work>,
+        scratch: &mut Scratch,
         out: &mut Vec<Clipped>,
     ) {
+        let Scratch {
+            stack,
+            labelled,
+            last,
+        } = scratch;
         let eps = self.eps;
         let margin = 2.0 * eps;
         let bbox = polygon.bbox();
@@ -125,7 +131,7 @@ impl Tree {
                         && spans_axis_plane(&w.bbox, &node.plane, eps)
                         && !self.near_surface(w.link, &w.bbox, margin));
                 if whole {
-                    if self.label_whole(&w, surface) == keep {
+                    if self.label_whole(&w, surface, labelled, last) == keep {
                         out.push(Clipped {
                             polygon: w.polygon,
                             coplanar: w.coplanar,
@@ -172,13 +178,41 @@ impl Tree {
     }
 
     /// The label of a fragment that no surface below its node comes near: by point location
-    /// in the tree, or where that ends in an unbuilt cell, by a ray from the centroid (moved off
-    /// the surface it was routed along, if any).
-    fn label_whole(&self, w: &Work, surface: &Surface) -> Label {
+    /// in the tree, or where that ends in an unbuilt cell, from the centroid (moved off the
+    /// surface it was routed along, if any): by the crossings between it and the last point
+    /// labelled in that cell, or else in any cell, or failing that by a ray.
+    fn label_whole(
+        &self,
+        w: &Work,
+        surface: &Surface,
+        labelled: &mut FxHashMap<u32, (DVec3, Label)>,
+        last: &mut Option<(DVec3, Label)>,
+    ) -> Label {
         let c = w.polygon.centroid();
-        self.locate(w.link, c)
-            .unwrap_or_else(|| surface.label(c + w.side * (2.0 * self.eps)))
+        self.locate(w.link, c).unwrap_or_else(|stub| {
+            let p = c + w.side * (2.0 * self.eps);
+            let label = labelled
+                .get(&stub)
+                .copied()
+                .or(*last)
+                .and_then(|known| surface.label_from(p, known))
+                .unwrap_or_else(|| surface.label(p));
+            labelled.insert(stub, (p, label));
+            *last = Some((p, label));
+            label
+        })
     }
+}
+
+/// Per thread of a clip: the work stack; per unbuilt cell the last point labelled in it (the
+/// cell is convex: a segment between two of its points meets only its few polygons), and the
+/// last labelled anywhere (fragments in a row are neighbours, so a segment from it to a cell
+/// not seen yet is still short).
+#[derive(Default)]
+struct Scratch {
+    stack: Vec<Work>,
+    labelled: FxHashMap<u32, (DVec3, Label)>,
+    last: Option<(DVec3, Label)>,
 }
 
 /// True when a box reaches more than `eps` to both sides of an axis-aligned plane.

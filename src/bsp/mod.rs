@@ -79,17 +79,18 @@ pub(crate) struct Tree {
 }
 
 impl Tree {
-    /// The label of the region holding `p`, starting at `link`, or `None` where the walk ends
-    /// in an unbuilt cell. Meant for points away from the polygons below `link`; a point on a
-    /// plane that carries no polygon nearby sees the same label on both sides.
-    pub fn locate(&self, mut link: Link, p: glam::DVec3) -> Option<Label> {
+    /// The label of the region holding `p`, starting at `link`, or `Err` with the node index
+    /// where the walk ends in an unbuilt cell. Meant for points away from the polygons below
+    /// `link`; a point on a plane that carries no polygon nearby sees the same label on both
+    /// sides.
+    pub fn locate(&self, mut link: Link, p: glam::DVec3) -> Result<Label, u32> {
         loop {
             match link {
-                Link::Leaf(label) => return Some(label),
+                Link::Leaf(label) => return Ok(label),
                 Link::Node(i) => {
                     let node = &self.nodes[i as usize];
                     if matches!(node.kind, Kind::Stub) {
-                        return None;
+                        return Err(i);
                     }
                     link = if node.plane.distance(p) >= 0.0 {
                         node.front

@@ -32,7 +32,8 @@ pub(crate) struct Surface<'a> {
 
 enum Crossing {
     Miss,
-    Hit,
+    /// The ray crosses the polygon's interior this far along (in units of its direction).
+    Hit(f64),
     /// The ray passes within tolerance of an edge or runs in the polygon's plane.
     Graze,
 }
@@ -99,7 +100,7 @@ impl<'a> Surface<'a> {
             self.bvh.ray(p, dir, |i| {
                 match crossing(&self.polygons[i as usize], p, dir, self.eps) {
                     Crossing::Miss => {}
-                    Crossing::Hit => crossings += 1,
+                    Crossing::Hit(_) => crossings += 1,
                     Crossing::Graze => grazed = true,
                 }
                 grazed
@@ -114,6 +115,53 @@ impl<'a> Surface<'a> {
             };
         }
         self.winding_label(p)
+    }
+
+    /// The label of `p` from a point `q` whose label is known, by the parity of crossings along
+    /// the segment between them: a short segment meets a few polygons where a ray from `p` meets
+    /// every box on its way out of the model. `None` when the segment grazes an edge, runs in a
+    /// polygon's plane or crosses a plane within the tolerance of either end (the caller casts
+    /// a ray instead).
+    pub fn label_from(&self, p: DVec3, (q, q_label): (DVec3, Label)) -> Option<Label> {
+        let len = (q - p).length();
+        if len <= self.eps {
+            return None;
+        }
+        let dir = (q - p) / len;
+        let inv = dir.recip();
+        let mut crossings = 0u32;
+        let mut grazed = false;
+        self.bvh.visit(
+            |b| b.ray_span(p, inv, len).is_some(),
+            |i| {
+                match crossing(&self.polygons[i as usize], p, dir, self.eps) {
+                    Crossing::Miss => {}
+                    Crossing::Hit(t) => {
+                        // Either end within the tolerance of the plane it crosses: as unsure as
+                        // a graze.
+                        let across = self.polygons[i as usize].plane().normal.dot(dir).abs();
+                        if t * across <= self.eps || (len - t).abs() * across <= self.eps {
+                            grazed = true;
+                        } else if t < len {
+                            crossings += 1;
+                        }
+                    }
+                    Crossing::Graze => grazed = true,
+                }
+                grazed
+            },
+        );
+        if grazed {
+            return None;
+        }
+        Some(if crossings % 2 == 1 {
+            match q_label {
+                Label::Inside => Label::Outside,
+                Label::Outside => Label::Inside,
+            }
+        } else {
+            q_label
+        })
     }
 
     /// Inside when the generalised winding number is above one half.
@@ -161,7 +209,7 @@ fn crossing(poly: &Polygon, origin: DVec3, dir: DVec3, eps: f64) -> Crossing {
         inner = inner.min(edge.cross(hit - a).dot(plane.normal) / len);
     }
     if inner > eps {
-        Crossing::Hit
+        Crossing::Hit(t)
     } else if inner < -eps {
         Crossing::Miss
     } else {
@@ -187,5 +235,34 @@ mod tests {
             assert_eq!(s.label(p), want, "{p}");
             assert_eq!(s.winding_label(p), want, "{p}");
         }
+    }
+
+    /// A label carried along a segment from a labelled point agrees with a ray's, on a grid
+    /// of points through a torus (segments crossing its surface zero, one or more times).
+    #[test]
+    fn segments_carry_labels() {
+        let t = Solid::torus(1.0, 0.3, 32, 16).unwrap();
+        let s = Surface::new(t.polygons(), 1e-9);
+        let points: Vec<DVec3> = (0..125)
+            .map(|i| {
+                let g = |k: usize| -1.45 + 0.71 * k as f64;
+                DVec3::new(g(i % 5), g(i / 5 % 5), 0.37 * g(i / 25) + 0.011)
+            })
+            .collect();
+        let labels: Vec<Label> = points.iter().map(|&p| s.label(p)).collect();
+        let (mut carried, mut inside) = (0, 0);
+        for (i, &p) in points.iter().enumerate() {
+            inside += usize::from(labels[i] == Label::Inside);
+            for (j, &q) in points.iter().enumerate().step_by(7) {
+                if let Some(l) = s.label_from(p, (q, labels[j])) {
+                    assert_eq!(l, labels[i], "{p} from {q}");
+                    carried += 1;
+                }
+            }
+        }
+        assert!(
+            inside > 0 && carried > 2000,
+            "{inside} inside, {carried} carried"
+        );
     }
 }

@@ -7,6 +7,7 @@ use smallvec::SmallVec;
 
 use crate::geom::{Aabb, Plane, Side};
 
+mod axis;
 mod planes;
 mod shared;
 
