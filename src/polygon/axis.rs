@@ -3,7 +3,8 @@
 
 use glam::DVec3;
 
-use super::{Polygon, Split, Vertices, edge_cut};
+use super::split::edge_cut;
+use super::{Polygon, Split, Vertices};
 use crate::geom::Plane;
 
 impl Polygon {

@@ -8,6 +8,7 @@ use crate::hash::KeyedHashMap;
 
 use super::Polygon;
 use super::planes::{canonical, plane_bits};
+use super::split::lex_less;
 
 /// Below this sine of the angle between two of a vertex's three planes, the vertex is shared.
 pub(crate) const SHARE_BELOW: f64 = 1e-3;
@@ -84,11 +85,6 @@ fn key_of(p: &Polygon, k: usize) -> Option<Key> {
     let mut key = planes.map(|q| plane_bits(&canonical(&q)));
     key.sort_unstable();
     Some(key)
-}
-
-#[inline]
-fn lex_less(a: DVec3, b: DVec3) -> bool {
-    (a.x, a.y, a.z) < (b.x, b.y, b.z)
 }
 
 #[cfg(test)]
