@@ -41,23 +41,97 @@ pub(crate) fn triangulate_boundary(
     let vertices = spade_points(positions, &ids, normal)?;
     let constraint_list: Vec<[usize; 2]> =
         edges.iter().map(|&(a, b)| [local[&a], local[&b]]).collect();
+    let helpers = hole_centres(&vertices, &constraint_list);
+    if !helpers.is_empty() {
+        let mut with = vertices.clone();
+        with.extend(helpers);
+        if let Some(t) = inside_triangles(with, &constraint_list, &ids) {
+            return Some(t);
+        }
+    }
+    inside_triangles(vertices, &constraint_list, &ids)
+}
+
+/// The constrained Delaunay triangulation of `vertices` (the region's `ids`, then any helper
+/// points inside its holes) with the boundary `constraints`: the triangles left of the boundary,
+/// as vertex ids. `None` where the boundary is not a valid region, or a triangle inside it
+/// uses a helper.
+fn inside_triangles(
+    vertices: Vec<Point2<f64>>,
+    constraints: &[[usize; 2]],
+    ids: &[u32],
+) -> Option<Vec<[u32; 3]>> {
+    let count = vertices.len();
     let mut conflicts = 0usize;
-    let cdt: Cdt = ConstrainedDelaunayTriangulation::try_bulk_load_cdt(
-        vertices,
-        constraint_list.clone(),
-        |_| conflicts += 1,
-    )
-    .ok()?;
-    if conflicts > 0 || cdt.num_vertices() != ids.len() {
+    let cdt: Cdt =
+        ConstrainedDelaunayTriangulation::try_bulk_load_cdt(vertices, constraints.to_vec(), |_| {
+            conflicts += 1
+        })
+        .ok()?;
+    if conflicts > 0 || cdt.num_vertices() != count {
         return None;
     }
-    let label = inside_faces(&cdt, &constraint_list)?;
-    let triangles = cdt
-        .inner_faces()
+    let label = inside_faces(&cdt, constraints)?;
+    cdt.inner_faces()
         .filter(|f| label[f.fix().index()] == 1)
-        .map(|f| f.vertices().map(|v| ids[v.fix().index()]))
-        .collect();
-    Some(triangles)
+        .map(|f| {
+            let [a, b, c] = f.vertices().map(|v| ids.get(v.fix().index()).copied());
+            Some([a?, b?, c?])
+        })
+        .collect()
+}
+
+/// A point inside each hole of at least four corners from which the hole's whole boundary is
+/// seen (strictly right of every edge of it): the mean of its corners, where that is such a
+/// point.
+///
+/// The corners of a round hole lie on one circle (a drilled block's 32-gons, a sponge's squares),
+/// so triangulating the hole's inside made nearly every in-circle test of the bulk load exact
+/// (block − 100 cylinders: 9,700 exact tests of 14,000 instructions each per face). With a point
+/// in the middle the hole's inside is a fan of clear decisions. The helper sees nothing of the
+/// region across the hole's boundary, so the region's own triangles are the same constrained
+/// Delaunay triangulation.
+fn hole_centres(vertices: &[Point2<f64>], constraints: &[[usize; 2]]) -> Vec<Point2<f64>> {
+    let mut next = vec![usize::MAX; vertices.len()];
+    for &[a, b] in constraints {
+        if next[a] != usize::MAX {
+            // A vertex two loops pass through: loops are not told apart by chaining.
+            return Vec::new();
+        }
+        next[a] = b;
+    }
+    let mut seen = vec![false; vertices.len()];
+    let mut out = Vec::new();
+    let mut ring: Vec<usize> = Vec::new();
+    for &[start, _] in constraints {
+        if seen[start] {
+            continue;
+        }
+        ring.clear();
+        let mut at = start;
+        while !seen[at] && at != usize::MAX {
+            seen[at] = true;
+            ring.push(at);
+            at = next[at];
+        }
+        if at != start || ring.len() < 4 {
+            continue;
+        }
+        let n = ring.len() as f64;
+        let (sx, sy) = ring.iter().fold((0.0, 0.0), |(x, y), &k| {
+            (x + vertices[k].x, y + vertices[k].y)
+        });
+        let c = spade::mitigate_underflow(Point2::new(sx / n, sy / n));
+        let coord = |p: Point2<f64>| robust::Coord { x: p.x, y: p.y };
+        let inside = (0..ring.len()).all(|k| {
+            let (p, q) = (vertices[ring[k]], vertices[ring[(k + 1) % ring.len()]]);
+            robust::orient2d(coord(p), coord(q), coord(c)) < 0.0
+        });
+        if inside && c.x.is_finite() && c.y.is_finite() {
+            out.push(c);
+        }
+    }
+    out
 }
 
 type Cdt = ConstrainedDelaunayTriangulation<Point2<f64>>;
@@ -260,6 +334,96 @@ pub(crate) fn ear_clip(points: &[DVec2]) -> Option<Vec<[usize; 3]>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A square 4 across with `holes` round holes of `sides` corners (clockwise), as 3D points
+    /// in z = 0 and directed boundary edges.
+    fn drilled(sides: usize, holes: &[(f64, f64)]) -> (Vec<DVec3>, Vec<(u32, u32)>) {
+        let mut p = vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(4.0, 0.0, 0.0),
+            DVec3::new(4.0, 4.0, 0.0),
+            DVec3::new(0.0, 4.0, 0.0),
+        ];
+        let mut e = vec![(0, 1), (1, 2), (2, 3), (3, 0)];
+        for &(x, y) in holes {
+            let first = p.len() as u32;
+            for k in 0..sides {
+                let a = -(k as f64) * std::f64::consts::TAU / sides as f64;
+                p.push(DVec3::new(x + 0.5 * a.cos(), y + 0.5 * a.sin(), 0.0));
+                e.push((first + k as u32, first + ((k + 1) % sides) as u32));
+            }
+        }
+        (p, e)
+    }
+
+    /// Round holes get a helper point each, and the region still comes out as triangles on the
+    /// boundary's own vertices only: `V + 2H − 2` of them, covering the square less the holes.
+    #[test]
+    fn drilled_square_with_hole_centres() {
+        let holes = [(1.0, 1.0), (3.0, 1.0), (1.0, 3.0), (3.0, 3.0)];
+        let (p, e) = drilled(32, &holes);
+        let ids: Vec<u32> = (0..p.len() as u32).collect();
+        let pts = spade_points(&p, &ids, DVec3::Z).unwrap();
+        let constraints: Vec<[usize; 2]> =
+            e.iter().map(|&(a, b)| [a as usize, b as usize]).collect();
+        assert_eq!(hole_centres(&pts, &constraints).len(), 4);
+        let tris = triangulate_boundary(&p, DVec3::Z, &e).unwrap();
+        assert_eq!(tris.len(), p.len() + 2 * holes.len() - 2);
+        assert!(
+            tris.iter()
+                .all(|t| t.iter().all(|&v| (v as usize) < p.len()))
+        );
+        let area: f64 = tris
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| p[v as usize]);
+                0.5 * (b - a).cross(c - a).z
+            })
+            .sum();
+        let hole = 0.5 * 32.0 * 0.25 * (std::f64::consts::TAU / 32.0).sin();
+        assert!((area - (16.0 - 4.0 * hole)).abs() < 1e-12, "{area}");
+    }
+
+    /// No helper where the mean of a hole's corners does not see its whole boundary (an L-shaped
+    /// hole), nor for the outer loop or a triangle.
+    #[test]
+    fn no_hole_centre_outside_a_hole_kernel() {
+        // The outer square, then an L-shaped hole (clockwise) whose corner mean lies outside it.
+        let pts: Vec<Point2<f64>> = [
+            (0.0, 0.0),
+            (8.0, 0.0),
+            (8.0, 8.0),
+            (0.0, 8.0),
+            (1.0, 1.0),
+            (1.0, 7.0),
+            (2.0, 7.0),
+            (2.0, 2.0),
+            (7.0, 2.0),
+            (7.0, 1.0),
+            (4.0, 4.0),
+            (5.0, 4.0),
+            (4.0, 5.0),
+        ]
+        .iter()
+        .map(|&(x, y)| Point2::new(x, y))
+        .collect();
+        let constraints = [
+            [0, 1],
+            [1, 2],
+            [2, 3],
+            [3, 0],
+            [4, 5],
+            [5, 6],
+            [6, 7],
+            [7, 8],
+            [8, 9],
+            [9, 4],
+            [10, 12],
+            [12, 11],
+            [11, 10],
+        ];
+        assert!(hole_centres(&pts, &constraints).is_empty());
+    }
 
     #[test]
     fn l_shape() {
