@@ -2,6 +2,7 @@
 //! boundary edges, and ear clipping of simple polygons as the fallback.
 
 use glam::{DVec2, DVec3};
+use spade::handles::FixedVertexHandle;
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
 use smallvec::SmallVec;
@@ -41,21 +42,21 @@ pub(crate) fn triangulate_boundary(
     let vertices = spade_points(positions, &ids, normal)?;
     let constraint_list: Vec<[usize; 2]> =
         edges.iter().map(|&(a, b)| [local[&a], local[&b]]).collect();
-    let helpers = hole_centres(&vertices, &constraint_list);
-    if !helpers.is_empty() {
-        let mut with = vertices.clone();
-        with.extend(helpers);
-        if let Some(t) = inside_triangles(with, &constraint_list, &ids) {
+    if let Some(rings) = loops(vertices.len(), &constraint_list) {
+        let centres: Vec<Option<Point2<f64>>> =
+            rings.iter().map(|r| hole_centre(&vertices, r)).collect();
+        if centres.iter().any(Option::is_some)
+            && let Some(t) = insert_by_loops(&vertices, &rings, &centres, &constraint_list, &ids)
+        {
             return Some(t);
         }
     }
     inside_triangles(vertices, &constraint_list, &ids)
 }
 
-/// The constrained Delaunay triangulation of `vertices` (the region's `ids`, then any helper
-/// points inside its holes) with the boundary `constraints`: the triangles left of the boundary,
-/// as vertex ids. `None` where the boundary is not a valid region, or a triangle inside it
-/// uses a helper.
+/// The constrained Delaunay triangulation of `vertices` (the region's `ids`) with the boundary
+/// `constraints`, bulk loaded: the triangles left of the boundary, as vertex ids. `None` where
+/// the boundary is not a valid region.
 fn inside_triangles(
     vertices: Vec<Point2<f64>>,
     constraints: &[[usize; 2]],
@@ -71,67 +72,122 @@ fn inside_triangles(
     if conflicts > 0 || cdt.num_vertices() != count {
         return None;
     }
-    let label = inside_faces(&cdt, constraints)?;
-    cdt.inner_faces()
+    // The bulk load keeps the vertices in their order.
+    let handles: Vec<FixedVertexHandle> = cdt.fixed_vertices().collect();
+    let label = inside_faces(&cdt, constraints, &handles)?;
+    let triangles = cdt
+        .inner_faces()
         .filter(|f| label[f.fix().index()] == 1)
-        .map(|f| {
-            let [a, b, c] = f.vertices().map(|v| ids.get(v.fix().index()).copied());
-            Some([a?, b?, c?])
-        })
-        .collect()
+        .map(|f| f.vertices().map(|v| ids[v.fix().index()]))
+        .collect();
+    Some(triangles)
 }
 
-/// A point inside each hole of at least four corners from which the hole's whole boundary is
-/// seen (strictly right of every edge of it): the mean of its corners, where that is such a
-/// point.
-///
-/// The corners of a round hole lie on one circle (a drilled block's 32-gons, a sponge's squares),
-/// so triangulating the hole's inside made nearly every in-circle test of the bulk load exact
-/// (block − 100 cylinders: 9,700 exact tests of 14,000 instructions each per face). With a point
-/// in the middle the hole's inside is a fan of clear decisions. The helper sees nothing of the
-/// region across the hole's boundary, so the region's own triangles are the same constrained
-/// Delaunay triangulation.
-fn hole_centres(vertices: &[Point2<f64>], constraints: &[[usize; 2]]) -> Vec<Point2<f64>> {
-    let mut next = vec![usize::MAX; vertices.len()];
+/// The region's boundary as loops of local vertices, each in order; `None` where a vertex
+/// starts two edges or a chain does not close.
+fn loops(count: usize, constraints: &[[usize; 2]]) -> Option<Vec<Vec<usize>>> {
+    let mut next = vec![usize::MAX; count];
     for &[a, b] in constraints {
         if next[a] != usize::MAX {
-            // A vertex two loops pass through: loops are not told apart by chaining.
-            return Vec::new();
+            return None;
         }
         next[a] = b;
     }
-    let mut seen = vec![false; vertices.len()];
+    let mut seen = vec![false; count];
     let mut out = Vec::new();
-    let mut ring: Vec<usize> = Vec::new();
     for &[start, _] in constraints {
         if seen[start] {
             continue;
         }
-        ring.clear();
+        let mut ring = Vec::new();
         let mut at = start;
-        while !seen[at] && at != usize::MAX {
+        while at != usize::MAX && !seen[at] {
             seen[at] = true;
             ring.push(at);
             at = next[at];
         }
-        if at != start || ring.len() < 4 {
-            continue;
+        if at != start {
+            return None;
         }
-        let n = ring.len() as f64;
-        let (sx, sy) = ring.iter().fold((0.0, 0.0), |(x, y), &k| {
-            (x + vertices[k].x, y + vertices[k].y)
-        });
-        let c = spade::mitigate_underflow(Point2::new(sx / n, sy / n));
-        let coord = |p: Point2<f64>| robust::Coord { x: p.x, y: p.y };
-        let inside = (0..ring.len()).all(|k| {
-            let (p, q) = (vertices[ring[k]], vertices[ring[(k + 1) % ring.len()]]);
-            robust::orient2d(coord(p), coord(q), coord(c)) < 0.0
-        });
-        if inside && c.x.is_finite() && c.y.is_finite() {
-            out.push(c);
+        out.push(ring);
+    }
+    Some(out)
+}
+
+/// For a hole of at least four corners (a clockwise loop), the mean of its corners where that
+/// sees the hole's whole boundary (strictly right of every edge); `None` otherwise, and for an
+/// outer loop.
+fn hole_centre(vertices: &[Point2<f64>], ring: &[usize]) -> Option<Point2<f64>> {
+    if ring.len() < 4 {
+        return None;
+    }
+    let n = ring.len() as f64;
+    let (sx, sy) = ring.iter().fold((0.0, 0.0), |(x, y), &k| {
+        (x + vertices[k].x, y + vertices[k].y)
+    });
+    let c = spade::mitigate_underflow(Point2::new(sx / n, sy / n));
+    let coord = |p: Point2<f64>| robust::Coord { x: p.x, y: p.y };
+    let inside = (0..ring.len()).all(|k| {
+        let (p, q) = (vertices[ring[k]], vertices[ring[(k + 1) % ring.len()]]);
+        robust::orient2d(coord(p), coord(q), coord(c)) < 0.0
+    });
+    (inside && c.x.is_finite() && c.y.is_finite()).then_some(c)
+}
+
+/// The constrained Delaunay triangulation built one loop at a time, the loops without a centre
+/// (the outer ones) first and each hole's `centres` point before its corners; then the
+/// boundary edges as constraints. The triangles left of the boundary, as vertex ids; `None`
+/// where the boundary is not a valid region or a triangle inside it uses a centre.
+///
+/// The corners of a round hole lie on one circle (a drilled block's 32-gons), so a bulk load
+/// that meets them before the hole's middle decides nearly every in-circle test of the hole's
+/// inside exactly (block − 100 cylinders: 9,700 exact tests of 14,000 instructions each per
+/// face, most of `to_mesh`). With the centre in first the hole's inside is a fan of clear
+/// decisions, and each loop's corners follow one another, so every insertion starts next to
+/// its point. A centre sees nothing of the region across the hole's boundary, so the region's
+/// triangles are the constrained Delaunay triangulation of its own vertices still.
+fn insert_by_loops(
+    vertices: &[Point2<f64>],
+    rings: &[Vec<usize>],
+    centres: &[Option<Point2<f64>>],
+    constraints: &[[usize; 2]],
+    ids: &[u32],
+) -> Option<Vec<[u32; 3]>> {
+    let mut cdt = Cdt::new();
+    let mut handles: Vec<Option<FixedVertexHandle>> = vec![None; vertices.len()];
+    // Per vertex of the triangulation, its local vertex (`usize::MAX` for a centre).
+    let mut local_of: Vec<usize> = Vec::with_capacity(vertices.len() + rings.len());
+    let order = (0..rings.len()).filter(|&r| centres[r].is_none());
+    for r in order.chain((0..rings.len()).filter(|&r| centres[r].is_some())) {
+        let points = centres[r].map(|c| (usize::MAX, c)).into_iter();
+        for (k, p) in points.chain(rings[r].iter().map(|&k| (k, vertices[k]))) {
+            let h = cdt.insert(p).ok()?;
+            if h.index() != local_of.len() {
+                // Two corners at one point.
+                return None;
+            }
+            local_of.push(k);
+            if k != usize::MAX {
+                handles[k] = Some(h);
+            }
         }
     }
-    out
+    let handles: Vec<FixedVertexHandle> = handles.into_iter().collect::<Option<_>>()?;
+    for &[a, b] in constraints {
+        if cdt.try_add_constraint(handles[a], handles[b]).is_empty() {
+            return None;
+        }
+    }
+    let label = inside_faces(&cdt, constraints, &handles)?;
+    cdt.inner_faces()
+        .filter(|f| label[f.fix().index()] == 1)
+        .map(|f| {
+            let [a, b, c] = f
+                .vertices()
+                .map(|v| ids.get(local_of[v.fix().index()]).copied());
+            Some([a?, b?, c?])
+        })
+        .collect()
 }
 
 type Cdt = ConstrainedDelaunayTriangulation<Point2<f64>>;
@@ -161,13 +217,17 @@ fn spade_points(positions: &[DVec3], ids: &[u32], normal: DVec3) -> Option<Vec<P
     )
 }
 
-/// Per face of `cdt`: 1 inside the region, -1 outside, 0 unreached. Faces left of a boundary
+/// Per face of `cdt`: 1 inside the region, -1 outside, 0 unreached (`handles[k]` is the
+/// triangulation's vertex of the constraints' `k`). Faces left of a boundary
 /// edge are inside, right of it outside; the rest take the label of a neighbour across a
 /// non-boundary edge. `None` when a face lies left of one edge and right of another.
-fn inside_faces(cdt: &Cdt, constraints: &[[usize; 2]]) -> Option<Vec<i8>> {
+fn inside_faces(
+    cdt: &Cdt,
+    constraints: &[[usize; 2]],
+    handles: &[FixedVertexHandle],
+) -> Option<Vec<i8>> {
     let mut label: Vec<i8> = vec![0; cdt.num_all_faces()];
     let mut queue = Vec::new();
-    let handles: Vec<_> = cdt.fixed_vertices().collect();
     for &[a, b] in constraints {
         let edge = cdt.get_edge_from_neighbors(handles[a], handles[b])?;
         for (face, value) in [(edge.face(), 1i8), (edge.rev().face(), -1i8)] {
@@ -366,7 +426,9 @@ mod tests {
         let pts = spade_points(&p, &ids, DVec3::Z).unwrap();
         let constraints: Vec<[usize; 2]> =
             e.iter().map(|&(a, b)| [a as usize, b as usize]).collect();
-        assert_eq!(hole_centres(&pts, &constraints).len(), 4);
+        let rings = loops(pts.len(), &constraints).unwrap();
+        let centres = rings.iter().filter_map(|r| hole_centre(&pts, r)).count();
+        assert_eq!((rings.len(), centres), (5, 4));
         let tris = triangulate_boundary(&p, DVec3::Z, &e).unwrap();
         assert_eq!(tris.len(), p.len() + 2 * holes.len() - 2);
         assert!(
@@ -422,7 +484,9 @@ mod tests {
             [12, 11],
             [11, 10],
         ];
-        assert!(hole_centres(&pts, &constraints).is_empty());
+        let rings = loops(pts.len(), &constraints).unwrap();
+        assert_eq!(rings.len(), 3);
+        assert!(rings.iter().all(|r| hole_centre(&pts, r).is_none()));
     }
 
     #[test]
