@@ -79,7 +79,7 @@ pub(super) fn close_flat_cracks(
         for tri in tris {
             // A fill triangle that is the reverse of one already there would make the two a
             // sheet of no thickness: the loop was a lone flap's rim, and the flap goes instead.
-            if let Some(t) = flap(&owner, triangles, tri) {
+            if let Some(t) = flap(&owner, &uses, triangles, tri) {
                 cancelled.push(t);
             } else {
                 sources.push(source);
@@ -96,8 +96,21 @@ pub(super) fn close_flat_cracks(
     cancelled.len()
 }
 
-/// The triangle already in `triangles` that runs exactly against `tri`, if any.
-fn flap(owner: &FxHashMap<(u32, u32), u32>, triangles: &[[u32; 3]], tri: [u32; 3]) -> Option<u32> {
+/// The triangle already in `triangles` that runs exactly against `tri`, if any, and that other
+/// triangles hold by an edge too: a flap on the surface. A lone face's triangles are not flaps
+/// (taken away, the face would vanish, and an open result become an empty one).
+fn flap(
+    owner: &FxHashMap<(u32, u32), u32>,
+    uses: &FxHashMap<(u32, u32), i32>,
+    triangles: &[[u32; 3]],
+    tri: [u32; 3],
+) -> Option<u32> {
+    let held = |a: u32, b: u32| {
+        uses.get(&(a, b)).copied().unwrap_or(0) + uses.get(&(b, a)).copied().unwrap_or(0)
+    };
+    if (0..3).all(|k| held(tri[k], tri[(k + 1) % 3]) < 3) {
+        return None;
+    }
     let t = *owner.get(&(tri[1], tri[0]))?;
     let other = triangles[t as usize];
     let reversed = [tri[0], tri[2], tri[1]];
