@@ -78,7 +78,7 @@ pub(super) fn close_flat_cracks(
         let source = sources[owner[&edges[0]] as usize];
         for tri in tris {
             // A fill triangle that is the reverse of one already there would make the two a
-            // sheet of no thickness: the loop was a lone flap's rim, and the flap goes instead.
+            // sheet of no thickness: the loop was a flap's rim, and the flap goes instead.
             if let Some(t) = flap(&owner, &uses, triangles, tri) {
                 cancelled.push(t);
             } else {
@@ -87,13 +87,18 @@ pub(super) fn close_flat_cracks(
             }
         }
     }
-    cancelled.sort_unstable();
-    cancelled.dedup();
-    for &t in cancelled.iter().rev() {
-        triangles.remove(t as usize);
-        sources.remove(t as usize);
+    if cancelled.is_empty() {
+        return 0;
     }
-    cancelled.len()
+    let mut gone = vec![false; triangles.len()];
+    for &t in &cancelled {
+        gone[t as usize] = true;
+    }
+    let mut keep = gone.iter().map(|&g| !g);
+    triangles.retain(|_| keep.next().unwrap_or(true));
+    let mut keep = gone.iter().map(|&g| !g);
+    sources.retain(|_| keep.next().unwrap_or(true));
+    gone.iter().filter(|&&g| g).count()
 }
 
 /// The triangle already in `triangles` that runs exactly against `tri`, if any, and that other
