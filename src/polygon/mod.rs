@@ -5,7 +5,7 @@ use std::sync::Arc;
 use glam::DVec3;
 use smallvec::SmallVec;
 
-use crate::geom::{Aabb, Plane, Side};
+use crate::geom::{Aabb, Plane};
 
 mod axis;
 mod planes;
@@ -196,27 +196,6 @@ impl Polygon {
     pub fn fan(&self) -> impl Iterator<Item = [DVec3; 3]> + '_ {
         let v = &self.vertices;
         (1..v.len() - 1).map(move |i| [v[0], v[i], v[i + 1]])
-    }
-
-    /// Where the polygon lies relative to `plane`, vertices within `eps` counting as on it.
-    pub(crate) fn side(&self, plane: &Plane, eps: f64) -> Side {
-        if self.plane.is_same_or_flipped(plane) {
-            return Side::Coplanar;
-        }
-        let (mut front, mut back) = (false, false);
-        for &v in &self.vertices {
-            match plane.side_of(v, eps) {
-                Side::Front => front = true,
-                Side::Back => back = true,
-                _ => {}
-            }
-        }
-        match (front, back) {
-            (false, false) => Side::Coplanar,
-            (true, false) => Side::Front,
-            (false, true) => Side::Back,
-            (true, true) => Side::Spanning,
-        }
     }
 }
 

@@ -6,9 +6,40 @@ use smallvec::SmallVec;
 
 use super::planes::meet;
 use super::{Polygon, Split, UNKNOWN, Vertices};
-use crate::geom::Plane;
+use crate::geom::{Plane, Side};
 
 impl Polygon {
+    /// Where the polygon lies relative to `plane`, vertices within `eps` counting as on it, and
+    /// whether some vertex does. [`Polygon::split`] says the same without cutting where this
+    /// says `Coplanar`, and where it says `Front` or `Back` with no vertex near, or with one near
+    /// but `plane` not [`Polygon::nearly_parallel`] (the tests are `split`'s own): a tree build
+    /// that classified polygons to choose a splitter need not split those again.
+    pub(crate) fn side_near(&self, plane: &Plane, eps: f64) -> (Side, bool) {
+        if self.plane.is_same_or_flipped(plane) {
+            return (Side::Coplanar, true);
+        }
+        let (mut front, mut back, mut near) = (false, false, false);
+        for &v in &self.vertices {
+            let d = plane.distance(v);
+            front |= d > eps;
+            back |= d < -eps;
+            near |= d.abs() <= eps;
+        }
+        let side = match (front, back) {
+            (false, false) => Side::Coplanar,
+            (true, false) => Side::Front,
+            (false, true) => Side::Back,
+            (true, true) => Side::Spanning,
+        };
+        (side, near)
+    }
+
+    /// True when `plane` crosses the polygon's at a sine below [`ON_BAND_BELOW`], where
+    /// [`Polygon::split`] counts vertices as on it within a band narrower than `eps`.
+    pub(crate) fn nearly_parallel(&self, plane: &Plane) -> bool {
+        self.plane.normal.cross(plane.normal).length() < ON_BAND_BELOW
+    }
+
     /// Classifies against `plane` and, where the polygon spans it, cuts it in two. A polygon is
     /// coplanar with its own plane whatever its vertices say (see [`Plane::is_same_or_flipped`]),
     /// and with any plane all its vertices lie within `eps` of.
@@ -332,4 +363,56 @@ pub(super) fn edge_cut(
 #[inline]
 pub(super) fn lex_less(a: DVec3, b: DVec3) -> bool {
     (a.x, a.y, a.z) < (b.x, b.y, b.z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Where `side_near` settles a polygon, `split` says the same: planes through a vertex
+    /// (a vertex near), tilted from the polygon's own by angles from 10⁻⁹ to 1 rad (inside and
+    /// outside the nearly parallel band), at offsets within and beyond the tolerance.
+    #[test]
+    fn side_near_settles_as_split_does() {
+        let ring = [
+            DVec3::new(0.1, 0.2, 0.3),
+            DVec3::new(1.3, 0.1, 0.7),
+            DVec3::new(0.4, 1.6, 1.2),
+        ];
+        let poly = Polygon::new(&ring, 3).unwrap();
+        let n = poly.plane().normal;
+        let across = n.any_orthonormal_vector();
+        let eps = 1e-9;
+        let (mut settled, mut near_settled, mut in_band) = (0, 0, 0);
+        for tilt in [0.0, 1e-9, 1e-7, 1e-5, 5e-4, 2e-3, 0.1, 1.0] {
+            let normal = (n + across * tilt).normalize();
+            for &v in &ring {
+                for offset in [-3.0 * eps, -0.5 * eps, 0.0, 0.7 * eps, 2.0 * eps, 0.3] {
+                    for normal in [normal, -normal] {
+                        let plane = Plane::through(v + normal * offset, normal);
+                        let (side, near) = poly.side_near(&plane, eps);
+                        let split = poly.split(&plane, eps);
+                        let want = match side {
+                            Side::Coplanar => "Coplanar",
+                            Side::Front => "Front",
+                            Side::Back => "Back",
+                            Side::Spanning => continue,
+                        };
+                        if side != Side::Coplanar && near && poly.nearly_parallel(&plane) {
+                            in_band += 1;
+                            continue;
+                        }
+                        settled += 1;
+                        near_settled += usize::from(near && side != Side::Coplanar);
+                        let got = format!("{split:?}");
+                        assert!(got.starts_with(want), "{want} vs {got}: {plane:?}");
+                    }
+                }
+            }
+        }
+        assert!(
+            settled > 100 && near_settled > 20 && in_band > 5,
+            "{settled} settled, {near_settled} with a vertex near, {in_band} in the band"
+        );
+    }
 }
