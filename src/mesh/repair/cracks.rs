@@ -7,6 +7,12 @@
 //! far wider than any weld. The slit bounds a piece of surface that lies flat in the plane of
 //! the faces on both sides, so filling it with triangles in that plane closes the mesh and
 //! moves nothing (the piece has no thickness; the volume is unchanged).
+//!
+//! The same loops arise around a flap: at a corner where four planes meet to rounding (a cube
+//! less itself turned 1e-7° about a skew axis: one cube's corner lies on the other's face, its
+//! motion being along that face), one sheet of a thin wedge holds a triangle 10⁻¹⁰ across that
+//! the sheet against it lacks. Its rim is the loop; filling it would lay the reverse triangle
+//! on it, a sheet of no thickness, so the flap is taken away instead.
 
 use glam::DVec3;
 
@@ -15,13 +21,16 @@ use crate::geom::triangulate::{ear_clip_boundary, triangulate_boundary};
 use crate::hash::FxHashMap;
 
 /// Fills every loop of unpaired half-edges that lies within `flat` of one plane with triangles
-/// running the other way, each taking the source of the triangle beside the loop's first edge.
-/// Loops that are not flat, or do not close, are left alone.
+/// running the other way, each taking the source of the triangle beside the loop's first edge;
+/// a fill triangle that would lie on an existing one's reverse removes that one instead.
+/// Loops that are not flat, or do not close, are left alone. Returns how many triangles were
+/// removed (all from before the fill, so the fill's own start moves back by as many).
 pub(super) fn close_flat_cracks(
     positions: &[DVec3],
     (triangles, sources): &mut (Vec<[u32; 3]>, Vec<u32>),
     flat: f64,
-) {
+) -> usize {
+    let mut cancelled: Vec<u32> = Vec::new();
     let mut uses: FxHashMap<(u32, u32), i32> = FxHashMap::default();
     let mut owner: FxHashMap<(u32, u32), u32> = FxHashMap::default();
     for (t, tri) in triangles.iter().enumerate() {
@@ -67,9 +76,47 @@ pub(super) fn close_flat_cracks(
             continue;
         }
         let source = sources[owner[&edges[0]] as usize];
-        sources.extend(std::iter::repeat_n(source, tris.len()));
-        triangles.extend(tris);
+        for tri in tris {
+            // A fill triangle that is the reverse of one already there would make the two a
+            // sheet of no thickness: the loop was a lone flap's rim, and the flap goes instead.
+            if let Some(t) = flap(&owner, &uses, triangles, tri) {
+                cancelled.push(t);
+            } else {
+                sources.push(source);
+                triangles.push(tri);
+            }
+        }
     }
+    cancelled.sort_unstable();
+    cancelled.dedup();
+    for &t in cancelled.iter().rev() {
+        triangles.remove(t as usize);
+        sources.remove(t as usize);
+    }
+    cancelled.len()
+}
+
+/// The triangle already in `triangles` that runs exactly against `tri`, if any, and that other
+/// triangles hold by an edge too: a flap on the surface. A lone face's triangles are not flaps
+/// (taken away, the face would vanish, and an open result become an empty one).
+fn flap(
+    owner: &FxHashMap<(u32, u32), u32>,
+    uses: &FxHashMap<(u32, u32), i32>,
+    triangles: &[[u32; 3]],
+    tri: [u32; 3],
+) -> Option<u32> {
+    let held = |a: u32, b: u32| {
+        uses.get(&(a, b)).copied().unwrap_or(0) + uses.get(&(b, a)).copied().unwrap_or(0)
+    };
+    if (0..3).all(|k| held(tri[k], tri[(k + 1) % 3]) < 3) {
+        return None;
+    }
+    let t = *owner.get(&(tri[1], tri[0]))?;
+    let other = triangles[t as usize];
+    let reversed = [tri[0], tri[2], tri[1]];
+    (0..3)
+        .any(|k| other == [reversed[k], reversed[(k + 1) % 3], reversed[(k + 2) % 3]])
+        .then_some(t)
 }
 
 /// Follows unpaired half-edges from `start` until they come back to its first vertex; `None`
