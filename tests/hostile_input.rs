@@ -221,6 +221,39 @@ fn crossing_pairs_of_a_triangle_repeated_many_times_stop_at_the_limit() {
     );
 }
 
+/// A cone of 20,000 sides: its apex and its base's centre are each in 20,000 triangles, whose
+/// boxes all overlap one another (and the apex's all overlap the base's). The crossing search
+/// tested those 8·10⁸ pairs exactly (423 s in `info`); the fans around the two centres are
+/// checked once each instead. The work is bounded by a count beside the search
+/// (`mesh::self_intersect::tests::a_cone_of_many_triangles_is_checked_in_work_linear_in_its_size`);
+/// here the cone reads as the solid it is.
+#[test]
+fn a_cone_of_many_sides_reads_as_a_closed_solid() {
+    const N: usize = 20_000;
+    let mut text = String::from("v 0 0 1\nv 0 0 0\n");
+    for i in 0..N {
+        let a = std::f64::consts::TAU * i as f64 / N as f64;
+        text += &format!("v {:?} {:?} 0\n", a.cos(), a.sin());
+    }
+    for i in 0..N {
+        let (p, q) = (3 + i, 3 + (i + 1) % N);
+        text += &format!("f 1 {p} {q}\nf 2 {q} {p}\n");
+    }
+    let dir = Scratch::new("cone");
+    let path = dir.path("cone.obj");
+    fs::write(&path, text).unwrap();
+    let mesh = read_mesh(&path).unwrap();
+    let report = mesh.report();
+    assert!(report.is_closed_manifold(), "{report}");
+    assert_eq!(report.genus, Some(0));
+    assert!(mesh.crossing_triangle_pairs().is_empty());
+    // The volume of the pyramid over the regular N-gon of unit radius, height 1.
+    let exact = N as f64 * (std::f64::consts::TAU / N as f64).sin() / 6.0;
+    let solid = bspcsg::Solid::from_mesh(&mesh).unwrap();
+    assert!((solid.volume() - exact).abs() < 1e-12, "{}", solid.volume());
+    assert!((report.volume - exact).abs() < 1e-12, "{}", report.volume);
+}
+
 /// A soup of flat triangles (random points on a line, three to a face): each is a shell of
 /// zero volume, and `info` took minutes on a million vertices (the report searched a list of
 /// such shells per triangle; their boxes all overlap, so the crossing search paired them all).

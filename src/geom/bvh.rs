@@ -13,7 +13,12 @@ struct Node {
     start_or_right: u32,
     /// Items in a leaf; 0 for an inner node.
     count: u32,
+    /// The group all items below share ([`Bvh::build_grouped`]), or [`NO_GROUP`].
+    group: u32,
 }
+
+/// The group of an item in no group, and of a node whose items are in more than one.
+pub(crate) const NO_GROUP: u32 = u32::MAX;
 
 /// A BVH over item boxes (see [`Bvh::build`]).
 /// Nodes are stored depth-first, so an inner node's first child follows it.
@@ -28,6 +33,15 @@ impl Bvh {
     /// (Z-order) curve of their box centres, then ranges are halved: spatially coherent leaves
     /// for `O(n log n)` with one sort.
     pub fn build(boxes: &[Aabb]) -> Bvh {
+        Self::build_grouped(boxes, &[])
+    }
+
+    /// [`Bvh::build`] with item `i` in group `groups[i]` (all in [`NO_GROUP`] when `groups` is
+    /// empty). Items are sorted by group first, so each group fills whole subtrees but for the
+    /// `O(log n)` nodes on its range's borders, and [`Bvh::visit_skipping`] can pass over a group
+    /// without entering it.
+    pub fn build_grouped(boxes: &[Aabb], groups: &[u32]) -> Bvh {
+        let group = |i: usize| groups.get(i).copied().unwrap_or(NO_GROUP);
         let mut nodes = Vec::with_capacity(2 * boxes.len() / LEAF_ITEMS + 1);
         if boxes.is_empty() {
             return Bvh {
@@ -39,16 +53,17 @@ impl Bvh {
         let frame = Aabb::from_points(&centres);
         let scale = DVec3::splat(((1u32 << 21) - 1) as f64)
             / frame.size().max(DVec3::splat(f64::MIN_POSITIVE));
-        let mut keyed: Vec<(u64, u32)> = centres
+        let mut keyed: Vec<(u32, u64, u32)> = centres
             .iter()
             .enumerate()
             .map(|(i, c)| {
                 let q = ((*c - frame.min) * scale).as_uvec3();
-                (morton(q.x) | morton(q.y) << 1 | morton(q.z) << 2, i as u32)
+                let key = morton(q.x) | morton(q.y) << 1 | morton(q.z) << 2;
+                (group(i), key, i as u32)
             })
             .collect();
         keyed.sort_unstable();
-        let items: Vec<u32> = keyed.into_iter().map(|(_, i)| i).collect();
+        let items: Vec<u32> = keyed.into_iter().map(|(_, _, i)| i).collect();
         // (start, end, parent whose `right` this node is)
         let mut stack: Vec<(usize, usize, Option<usize>)> = vec![(0, items.len(), None)];
         while let Some((start, end, parent)) = stack.pop() {
@@ -61,6 +76,7 @@ impl Bvh {
                 bbox: Aabb::EMPTY,
                 start_or_right: if leaf { start as u32 } else { 0 },
                 count: if leaf { (end - start) as u32 } else { 0 },
+                group: NO_GROUP,
             });
             if !leaf {
                 let mid = (start + end) / 2;
@@ -69,20 +85,30 @@ impl Bvh {
                 stack.push((start, mid, None));
             }
         }
-        // Boxes bottom-up: children follow their parent in the node order.
+        // Boxes and groups bottom-up: children follow their parent in the node order.
+        let same = |a: u32, b: u32| if a == b { a } else { NO_GROUP };
         for n in (0..nodes.len()).rev() {
             let node = &nodes[n];
-            let bbox = if node.count > 0 {
+            let (bbox, shared) = if node.count > 0 {
                 let s = node.start_or_right as usize;
-                items[s..s + node.count as usize]
-                    .iter()
-                    .fold(Aabb::EMPTY, |b, &i| b.union(&boxes[i as usize]))
+                let leaf = &items[s..s + node.count as usize];
+                (
+                    leaf.iter()
+                        .fold(Aabb::EMPTY, |b, &i| b.union(&boxes[i as usize])),
+                    leaf.iter()
+                        .map(|&i| group(i as usize))
+                        .reduce(same)
+                        .unwrap_or(NO_GROUP),
+                )
             } else {
-                nodes[n + 1]
-                    .bbox
-                    .union(&nodes[node.start_or_right as usize].bbox)
+                let (first, second) = (&nodes[n + 1], &nodes[node.start_or_right as usize]);
+                (
+                    first.bbox.union(&second.bbox),
+                    same(first.group, second.group),
+                )
             };
             nodes[n].bbox = bbox;
+            nodes[n].group = shared;
         }
         Bvh { nodes, items }
     }
@@ -96,7 +122,18 @@ impl Bvh {
     }
 
     /// Calls `item` for each item in leaves whose boxes pass `enter`; stops when it returns true.
-    pub fn visit(&self, mut enter: impl FnMut(&Aabb) -> bool, mut item: impl FnMut(u32) -> bool) {
+    pub fn visit(&self, enter: impl FnMut(&Aabb) -> bool, item: impl FnMut(u32) -> bool) {
+        self.visit_skipping(|_| false, enter, item);
+    }
+
+    /// [`Bvh::visit`] passing over every subtree whose items are all in one group for which
+    /// `skip` is true; items of such groups in mixed leaves are still given to `item`.
+    pub fn visit_skipping(
+        &self,
+        skip: impl Fn(u32) -> bool,
+        mut enter: impl FnMut(&Aabb) -> bool,
+        mut item: impl FnMut(u32) -> bool,
+    ) {
         if self.nodes.is_empty() {
             return;
         }
@@ -104,7 +141,7 @@ impl Bvh {
         let mut stack: smallvec::SmallVec<[u32; 64]> = smallvec::smallvec![0u32];
         while let Some(n) = stack.pop() {
             let node = &self.nodes[n as usize];
-            if !enter(&node.bbox) {
+            if (node.group != NO_GROUP && skip(node.group)) || !enter(&node.bbox) {
                 continue;
             }
             if node.count > 0 {

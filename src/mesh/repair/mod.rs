@@ -28,6 +28,7 @@ mod shells;
 mod thin;
 mod tjunction;
 
+pub(crate) use discs::Links;
 pub(crate) use shells::split_touching;
 
 use glam::DVec3;
