@@ -81,11 +81,14 @@ impl Polygon {
         // the band described above.
         let mut tight: SmallVec<[f64; 8]> = SmallVec::new();
         if sine < ON_BAND_BELOW {
-            tight.extend(
-                self.vertices
-                    .iter()
-                    .map(|&v| plane_noise(plane, v).max(eps * sine).min(eps)),
-            );
+            tight.extend(self.vertices.iter().enumerate().map(|(i, &v)| {
+                let noise = if self.made_on(i, plane) {
+                    plane_noise(plane, v)
+                } else {
+                    given_noise(plane, v)
+                };
+                noise.max(eps * sine).min(eps)
+            }));
             any_front = dist.iter().zip(&tight).any(|(&d, &on)| d > on);
             any_back = dist.iter().zip(&tight).any(|(&d, &on)| d < -on);
         }
@@ -141,6 +144,43 @@ impl Polygon {
 #[inline]
 fn plane_noise(plane: &Plane, v: DVec3) -> f64 {
     64.0 * f64::EPSILON * ((v - plane.anchor).abs().max_element() + v.abs().max_element())
+}
+
+/// How far from `plane` the rounding of its distance alone puts a point not computed on it.
+/// [`Plane::distance`] is `n · (v − anchor)`: for coordinates taken as they are, the
+/// subtraction rounds each component by at most ε |vᵢ − aᵢ| and the three-term dot product adds
+/// at most γ₃ Σ |nᵢ| |vᵢ − aᵢ|, about 7 ε |v − anchor|ₘₐₓ in all, which `GIVEN_NOISE_ULPS`
+/// covers. [`plane_noise`]'s |v| term and its factor are for points whose own coordinates
+/// were rounded onto the plane; a vertex that merely lies near it (an operand turned a hair
+/// onto the other's face) must not count as on it beyond this, or the cut runs through a corner
+/// 10⁻¹⁴ off the plane and the other operand, cut along the true line, leaves a slit.
+#[inline]
+fn given_noise(plane: &Plane, v: DVec3) -> f64 {
+    GIVEN_NOISE_ULPS * f64::EPSILON * (v - plane.anchor).abs().max_element()
+}
+
+/// Units in the last place of a vertex's distance from its anchor that rounding can put a
+/// point not computed on a plane off it (see [`given_noise`]).
+const GIVEN_NOISE_ULPS: f64 = 8.0;
+
+impl Polygon {
+    /// Whether vertex `i` may have been computed on `plane` (or its flip): an edge beside it
+    /// lies in `plane`, or the plane of an edge beside it is not known. Such a vertex keeps
+    /// [`plane_noise`]; any other is taken as given and gets [`given_noise`]. A polygon with an
+    /// edge in `plane` lies on one side of it, so it is never cut by it: where a vertex reads
+    /// as made on `plane` in one polygon and as given in another, only the second can be cut
+    /// there, and its cut point on the shared edge meets the first as a T-junction within
+    /// rounding, which `to_mesh` resolves as any other.
+    fn made_on(&self, i: usize, plane: &Plane) -> bool {
+        let n = self.vertices.len();
+        let edges = self.edges();
+        if edges.len() != n {
+            return true;
+        }
+        [&edges[(i + n - 1) % n], &edges[i]]
+            .iter()
+            .any(|e| e.normal == DVec3::ZERO || e.is_same_or_flipped(plane))
+    }
 }
 
 /// Where a piece's vertex came from: a vertex of the split polygon, or the cut of its edge `i`
