@@ -256,6 +256,19 @@ pub enum MeshDefect {
         /// The first pair.
         first: [usize; 2],
     },
+    /// Closed, but the check for crossing triangles gave up: it looked at its budget of
+    /// candidate pairs ([`PAIR_BUDGET_PER_TRIANGLE`](crate::PAIR_BUDGET_PER_TRIANGLE) per
+    /// triangle, [`PAIR_BUDGET_BASE`](crate::PAIR_BUDGET_BASE) more) without finding a crossing
+    /// or finishing. Valid meshes use a few per triangle; this takes many triangles crowded into
+    /// one place (a fan folded through itself, slivers stacked within rounding of one another,
+    /// fans meeting point to point). Remedy: remesh the crowded part, or read the mesh
+    /// unchecked ([`FromMeshOptions::lenient`](crate::FromMeshOptions::lenient)).
+    CrossingCheckOverBudget {
+        /// The mesh's triangles.
+        triangles: usize,
+        /// Candidate pairs looked at.
+        candidates: usize,
+    },
     /// A face whose boundary crosses itself, so it cannot be triangulated.
     SelfIntersectingFace {
         /// The face.
@@ -373,6 +386,16 @@ impl fmt::Display for MeshDefect {
                 "all {triangles} triangles have zero area within the rounding of their \
                  coordinates (up to {reach:e} from the origin): the mesh bounds no volume, or is \
                  too small for its distance from the origin; move it nearer the origin"
+            ),
+            MeshDefect::CrossingCheckOverBudget {
+                triangles,
+                candidates,
+            } => write!(
+                f,
+                "the check for crossing triangles gave up after {candidates} candidate pairs (its \
+                 budget for {triangles} triangles) without finding one: many triangles crowd one \
+                 place (a fan folded through itself, slivers stacked on one another, fans meeting \
+                 point to point); remesh that part, or read the mesh unchecked"
             ),
             MeshDefect::SelfIntersectingFace { face } => write!(
                 f,

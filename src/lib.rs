@@ -120,7 +120,10 @@ pub use io::{
     cleanup_interrupted_writes, encode_mesh, read_mesh, read_mesh_as, read_mesh_from_bytes,
     read_solid, referenced_files, write_mesh, write_mesh_as,
 };
-pub use mesh::{FromMeshOptions, MAX_CROSSING_PAIRS, Material, Mesh, MeshReport, ShellReport};
+pub use mesh::{
+    FromMeshOptions, MAX_CROSSING_PAIRS, Material, Mesh, MeshReport, PAIR_BUDGET_BASE,
+    PAIR_BUDGET_PER_TRIANGLE, ShellReport,
+};
 pub use polygon::{Polygon, Split};
 pub use primitives::{MAX_POLYGONS, MAX_SEGMENTS, MIN_SEGMENTS, segments_for_tolerance};
 pub use sdf::{

@@ -91,13 +91,17 @@ fn overlapping_shells_are_refused_as_an_operand_and_reported_by_info() {
         "{}",
         info.stdout
     );
-    let pairs = read_mesh(&shells).unwrap().crossing_triangle_pairs();
+    let pairs = read_mesh(&shells)
+        .unwrap()
+        .crossing_triangle_pairs()
+        .unwrap();
     assert!(!pairs.is_empty());
     // Each cube alone, and the two touching along a face, are solids.
     assert!(
         read_mesh(&other)
             .unwrap()
             .crossing_triangle_pairs()
+            .unwrap()
             .is_empty()
     );
     let err = bspcsg::read_solid(&shells, &bspcsg::FromMeshOptions::default()).unwrap_err();
@@ -160,7 +164,7 @@ fn overlapping_shells_are_united_when_asked_and_a_shell_through_itself_is_refuse
     fs::write(&folded, &text).unwrap();
     let mesh = read_mesh(&folded).unwrap();
     assert!(mesh.report().closed, "{}", mesh.report());
-    let pairs = mesh.crossing_triangle_pairs();
+    let pairs = mesh.crossing_triangle_pairs().unwrap();
     assert!(!pairs.is_empty());
     let err = bspcsg::read_solid(&folded, &options).unwrap_err();
     assert!(

@@ -210,7 +210,10 @@ fn crossing_pairs_of_a_triangle_repeated_many_times_stop_at_the_limit() {
     let path = dir.path("repeated.obj");
     fs::write(&path, text).unwrap();
     let mesh = read_mesh(&path).unwrap();
-    assert_eq!(mesh.crossing_triangle_pairs().len(), MAX_CROSSING_PAIRS);
+    assert_eq!(
+        mesh.crossing_triangle_pairs().unwrap().len(),
+        MAX_CROSSING_PAIRS
+    );
     let run = bspcsg(["info".as_ref(), path.as_os_str()]).ok();
     assert!(
         run.stdout.contains(&format!(
@@ -246,12 +249,91 @@ fn a_cone_of_many_sides_reads_as_a_closed_solid() {
     let report = mesh.report();
     assert!(report.is_closed_manifold(), "{report}");
     assert_eq!(report.genus, Some(0));
-    assert!(mesh.crossing_triangle_pairs().is_empty());
+    assert!(mesh.crossing_triangle_pairs().unwrap().is_empty());
     // The volume of the pyramid over the regular N-gon of unit radius, height 1.
     let exact = N as f64 * (std::f64::consts::TAU / N as f64).sin() / 6.0;
     let solid = bspcsg::Solid::from_mesh(&mesh).unwrap();
     assert!((solid.volume() - exact).abs() < 1e-12, "{}", solid.volume());
     assert!((report.volume - exact).abs() < 1e-12, "{}", report.volume);
+}
+
+/// Two cones of 2,000 sides touching apex to apex: a valid mesh, but every triangle of one
+/// apex's fan meets every one of the other's at that point, 4·10⁶ candidate pairs no fan test
+/// or box prunes (N stacked slivers and a folded fan are alike: counted beside the search,
+/// `mesh::self_intersect::tests::crowded_triangles_stop_at_the_pair_budget`). The check stops
+/// at its budget: a boolean refuses the file saying so and what to do (exit 2), `info` says the
+/// check gave up, and `--allow-open` takes the mesh unchecked.
+#[test]
+fn cones_touching_apex_to_apex_stop_the_crossing_check_at_its_budget() {
+    const N: usize = 2_000;
+    let mut text = String::new();
+    // The second cone mirrored through z = 1 and y = 0 (so still facing out).
+    for (sy, base) in [(1.0, 0.0), (-1.0, 2.0)] {
+        text += &format!("v 0 0 1\nv 0 0 {base:?}\n");
+        for i in 0..N {
+            let a = std::f64::consts::TAU * i as f64 / N as f64;
+            text += &format!("v {:?} {:?} {base:?}\n", a.cos(), sy * a.sin());
+        }
+    }
+    for first in [1, N + 3] {
+        for i in 0..N {
+            let (p, q) = (first + 2 + i, first + 2 + (i + 1) % N);
+            text += &format!("f {first} {p} {q}\nf {} {q} {p}\n", first + 1);
+        }
+    }
+    let dir = Scratch::new("hourglass");
+    let path = dir.path("hourglass.obj");
+    fs::write(&path, text).unwrap();
+    let mesh = read_mesh(&path).unwrap();
+    assert!(mesh.report().is_closed_manifold(), "{}", mesh.report());
+    let err = mesh.crossing_triangle_pairs().unwrap_err();
+    assert!(
+        matches!(
+            err.mesh_defect(),
+            Some(bspcsg::MeshDefect::CrossingCheckOverBudget { triangles, .. }) if *triangles == 4 * N
+        ),
+        "{err}"
+    );
+    let out = dir.path("out.obj");
+    let other = dir.path("box.obj");
+    fs::write(&other, box_obj_text([3.0; 3], [4.0; 3])).unwrap();
+    let args = ["union".as_ref(), path.as_os_str(), other.as_os_str()];
+    refused(
+        &args,
+        &out,
+        2,
+        &[
+            "hourglass.obj",
+            "gave up after",
+            "candidate pairs",
+            "--allow-open",
+        ],
+    );
+    let info = bspcsg(["info".as_ref(), path.as_os_str()]).ok();
+    assert!(
+        info.stdout.contains("gave up at its budget"),
+        "{}",
+        info.stdout
+    );
+    assert!(
+        info.stdout
+            .contains("bounds a solid                  not known"),
+        "{}",
+        info.stdout
+    );
+    let args = [
+        "union".as_ref(),
+        "--allow-open".as_ref(),
+        path.as_os_str(),
+        other.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ];
+    bspcsg(args).ok();
+    let volume = read_mesh(&out).unwrap().volume();
+    // Two pyramids over the regular N-gon of unit radius, height 1, and the unit box.
+    let cone = N as f64 * (std::f64::consts::TAU / N as f64).sin() / 6.0;
+    assert!((volume - (2.0 * cone + 1.0)).abs() < 1e-9, "{volume}");
 }
 
 /// A soup of flat triangles (random points on a line, three to a face): each is a shell of
@@ -279,7 +361,7 @@ fn a_soup_of_flat_triangles_is_measured_in_linear_time() {
     let read = t.elapsed();
     let t = Instant::now();
     let report = mesh.report();
-    let crossing = mesh.crossing_triangle_pairs();
+    let crossing = mesh.crossing_triangle_pairs().unwrap();
     let measured = t.elapsed();
     assert_eq!(report.degenerate_triangles, N / 3, "{report}");
     assert!(crossing.is_empty());

@@ -129,11 +129,18 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
         // Closed and outward, but two shells (or two parts of one) may still cross: such a
         // mesh bounds no solid (its volume counts the overlap twice) and misleads the BSP.
         let crossing = super::self_intersect::crossing_pairs(&mesh.positions, &mesh.triangles);
-        if let Some(&(t, u)) = crossing.first() {
+        if let Some(&(t, u)) = crossing.pairs.first() {
             return Err(Error::mesh(MeshDefect::SelfIntersecting {
-                pairs: crossing.len(),
-                more: crossing.len() >= super::self_intersect::MAX_CROSSING_PAIRS,
+                pairs: crossing.pairs.len(),
+                more: crossing.pairs.len() >= super::self_intersect::MAX_CROSSING_PAIRS
+                    || !crossing.complete,
                 first: [t as usize, u as usize],
+            }));
+        }
+        if !crossing.complete {
+            return Err(Error::mesh(MeshDefect::CrossingCheckOverBudget {
+                triangles: mesh.triangles.len(),
+                candidates: crossing.offered,
             }));
         }
     }

@@ -147,15 +147,26 @@ impl Mesh {
     /// interiors overlap (shells meeting only in shared planes; a triangle and its copy);
     /// triangles that only touch (along an edge, at a point, face to face facing opposite
     /// ways) do not. Triangles of zero area have no interior and cross nothing. At most
-    /// [`MAX_CROSSING_PAIRS`] pairs are found (which ones is then not fixed), so a hostile
-    /// file costs bounded time and memory.
+    /// [`MAX_CROSSING_PAIRS`] pairs are found (which ones is then not fixed), and at most
+    /// [`PAIR_BUDGET_PER_TRIANGLE`] candidate pairs per triangle (and [`PAIR_BUDGET_BASE`])
+    /// are looked at, so a hostile file costs bounded time and memory.
     /// [`crate::Solid::from_mesh`] refuses a closed mesh that has any.
-    #[must_use]
-    pub fn crossing_triangle_pairs(&self) -> Vec<[u32; 2]> {
-        self_intersect::crossing_pairs(&self.positions, &self.triangles)
-            .into_iter()
-            .map(|(t, u)| [t, u])
-            .collect()
+    ///
+    /// # Errors
+    /// [`MeshDefect::CrossingCheckOverBudget`](crate::MeshDefect::CrossingCheckOverBudget)
+    /// where the budget ran out before a crossing was found (pairs found before it are
+    /// returned: the mesh crosses, whatever the rest).
+    pub fn crossing_triangle_pairs(&self) -> crate::Result<Vec<[u32; 2]>> {
+        let found = self_intersect::crossing_pairs(&self.positions, &self.triangles);
+        if found.pairs.is_empty() && !found.complete {
+            return Err(crate::Error::mesh(
+                crate::MeshDefect::CrossingCheckOverBudget {
+                    triangles: self.triangles.len(),
+                    candidates: found.offered,
+                },
+            ));
+        }
+        Ok(found.pairs.into_iter().map(|(t, u)| [t, u]).collect())
     }
 
     /// The bounding box of the vertices used by triangles.
@@ -251,4 +262,4 @@ pub(crate) mod weld;
 
 pub use import::FromMeshOptions;
 pub use report::{MeshReport, ShellReport};
-pub use self_intersect::MAX_CROSSING_PAIRS;
+pub use self_intersect::{MAX_CROSSING_PAIRS, PAIR_BUDGET_BASE, PAIR_BUDGET_PER_TRIANGLE};

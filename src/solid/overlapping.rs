@@ -26,8 +26,15 @@ pub(crate) fn solid_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Result<
             defect: MeshDefect::SelfIntersecting { .. },
             ..
         }) if options.union_shells => {
+            // A search stopped at its budget cannot say which shells cross themselves.
             let crossing = crossing_pairs(&mesh.positions, &mesh.triangles);
-            union_of_shells(mesh, options, &crossing)
+            if !crossing.complete {
+                return Err(Error::mesh(MeshDefect::CrossingCheckOverBudget {
+                    triangles: mesh.triangles.len(),
+                    candidates: crossing.offered,
+                }));
+            }
+            union_of_shells(mesh, options, &crossing.pairs)
         }
         other => other.map(Solid::from_polygons),
     }

@@ -37,6 +37,9 @@ pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Re
                 Some(MeshDefect::SelfIntersecting { .. }) if !args.union_shells => {
                     Some(" (pass --union-shells to take its shells as their union)")
                 }
+                Some(MeshDefect::CrossingCheckOverBudget { .. }) => {
+                    Some(" (pass --allow-open to do so)")
+                }
                 _ => None,
             };
             let mut f = Failure::from(e);

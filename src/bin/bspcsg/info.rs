@@ -18,7 +18,8 @@ pub(crate) fn info(args: &InfoArgs, progress: &Progress) -> Result<(), Failure> 
     let report = mesh.report();
     let area = mesh.area();
     let bbox = mesh.bbox();
-    let crossing = mesh.crossing_triangle_pairs().len();
+    // `None` where the search gave up at its budget without finding a crossing.
+    let crossing = mesh.crossing_triangle_pairs().ok().map(|p| p.len());
     progress.finish();
     let watertight = watertight(&report);
     let text = if args.json {
@@ -74,10 +75,12 @@ pub(crate) fn info(args: &InfoArgs, progress: &Progress) -> Result<(), Failure> 
         line("needles", report.needles.to_string());
         line(
             "crossing triangle pairs",
-            if crossing >= MAX_CROSSING_PAIRS {
-                format!("{crossing} or more (the search stops there)")
-            } else {
-                crossing.to_string()
+            match crossing {
+                Some(n) if n >= MAX_CROSSING_PAIRS => {
+                    format!("{n} or more (the search stops there)")
+                }
+                Some(n) => n.to_string(),
+                None => "not known: the search gave up at its budget (crowded triangles)".into(),
             },
         );
         line("components", report.shells.len().to_string());
@@ -92,7 +95,11 @@ pub(crate) fn info(args: &InfoArgs, progress: &Progress) -> Result<(), Failure> 
         // Closed and manifold is not yet a solid: shells that cross count space twice.
         line(
             "bounds a solid",
-            yes(report.is_closed_manifold() && report.inverted_shells == 0 && crossing == 0).into(),
+            match crossing {
+                _ if !report.is_closed_manifold() || report.inverted_shells > 0 => "no".into(),
+                Some(n) => yes(n == 0).into(),
+                None => "not known (see crossing triangle pairs)".into(),
+            },
         );
         s
     };
