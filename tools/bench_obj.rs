@@ -2,7 +2,11 @@
 //! manifold3d on the same files, so speed claims are ratios measured in one session.
 //!
 //! usage: cargo run --release --example bench_obj -- union|intersection|difference A.obj B.obj
-//!        [C.obj ...] [--runs N]
+//!        [C.obj ...] [--runs N] [--one-pool]
+//!
+//! `--one-pool` runs everything inside a one-thread rayon pool, so a profiler that counts per
+//! thread (callgrind) sees the `par_iter` work under its callers: without it, that work runs on
+//! the pool's worker threads and every parallel stage reads as nearly free.
 //!
 //! Prints one JSON line: op, input and output triangles, the output's volume and whether it is
 //! a closed 2-manifold, the median and minimum over the runs (after one warm-up) of the boolean
@@ -15,6 +19,16 @@ use bspcsg::{BoolOp, Solid, read_mesh};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
+    if let Some(i) = args.iter().position(|a| a == "--one-pool") {
+        args.remove(i);
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+        // The error is made a String inside: the boxed error is not `Send`.
+        return Ok(pool.install(|| run(args).map_err(|e| e.to_string()))?);
+    }
+    run(args)
+}
+
+fn run(mut args: Vec<String>) -> Result<(), Box<dyn std::error::Error>> {
     let mut runs = 9usize;
     if let Some(i) = args.iter().position(|a| a == "--runs") {
         runs = args.get(i + 1).ok_or("--runs needs a number")?.parse()?;
@@ -26,7 +40,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some("difference") => BoolOp::Difference,
         _ => {
             return Err(
-                "usage: bench_obj union|intersection|difference A.obj B.obj [...] [--runs N]"
+                "usage: bench_obj union|intersection|difference A.obj B.obj [...] [--runs N] \
+                 [--one-pool]"
                     .into(),
             );
         }

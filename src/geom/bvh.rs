@@ -158,6 +158,92 @@ impl Bvh {
         }
     }
 
+    /// Inner nodes whose subtrees together hold every item once, split level by level until there
+    /// are at least `count` of them or only leaves are left: independent pieces of work for
+    /// [`Bvh::visit_pairs`] in parallel.
+    pub fn cut(&self, count: usize) -> Vec<u32> {
+        if self.nodes.is_empty() {
+            return Vec::new();
+        }
+        let mut cut = vec![0u32];
+        while cut.len() < count && cut.iter().any(|&n| self.nodes[n as usize].count == 0) {
+            cut = cut
+                .iter()
+                .flat_map(|&n| {
+                    let node = &self.nodes[n as usize];
+                    if node.count > 0 {
+                        [n, u32::MAX]
+                    } else {
+                        [n + 1, node.start_or_right]
+                    }
+                })
+                .filter(|&n| n != u32::MAX)
+                .collect();
+        }
+        cut
+    }
+
+    /// Calls `pair(i, j)` for every item `i` below node `from` of this tree (0 for all, or one
+    /// of [`Bvh::cut`]) and item `j` of `other` whose leaves' boxes overlap, and so every box
+    /// above them. One descent of both trees together: querying `other` once per item of this
+    /// one enters the top of `other` again for every query (on the T-junction search, ~130 nodes
+    /// per query for ~11 items found).
+    pub fn visit_pairs(&self, from: u32, other: &Bvh, mut pair: impl FnMut(u32, u32)) {
+        if self.nodes.is_empty() || other.nodes.is_empty() {
+            return;
+        }
+        fn leaf<'t>(tree: &'t Bvh, n: &Node) -> &'t [u32] {
+            let s = n.start_or_right as usize;
+            &tree.items[s..s + n.count as usize]
+        }
+        let children = |tree: &Bvh, n: u32| [n + 1, tree.nodes[n as usize].start_or_right];
+        // Pairs go on the stack only once their boxes are known to overlap.
+        if !self.nodes[from as usize]
+            .bbox
+            .overlaps(&other.nodes[0].bbox, 0.0)
+        {
+            return;
+        }
+        let mut stack: smallvec::SmallVec<[(u32, u32); 128]> = smallvec::smallvec![(from, 0)];
+        while let Some((a, b)) = stack.pop() {
+            let (na, nb) = (&self.nodes[a as usize], &other.nodes[b as usize]);
+            // Descend the inner node with the larger box, or the only inner one.
+            let down_a = match (na.count > 0, nb.count > 0) {
+                (true, true) => {
+                    for &i in leaf(self, na) {
+                        for &j in leaf(other, nb) {
+                            pair(i, j);
+                        }
+                    }
+                    continue;
+                }
+                (true, false) => false,
+                (false, true) => true,
+                (false, false) => {
+                    na.bbox.size().length_squared() >= nb.bbox.size().length_squared()
+                }
+            };
+            if down_a {
+                for c in children(self, a) {
+                    if self.nodes[c as usize].bbox.overlaps(&nb.bbox, 0.0) {
+                        stack.push((c, b));
+                    }
+                }
+            } else {
+                for c in children(other, b) {
+                    if other.nodes[c as usize].bbox.overlaps(&na.bbox, 0.0) {
+                        stack.push((a, c));
+                    }
+                }
+            }
+        }
+    }
+
+    /// The items in the order [`Bvh::visit`] meets them (where it enters every leaf).
+    pub fn order(&self) -> &[u32] {
+        &self.items
+    }
+
     /// Calls `item` for every item whose leaf box the ray `origin + t·dir` (t ≥ 0) passes
     /// through; stops when it returns true.
     pub fn ray(&self, origin: DVec3, dir: DVec3, item: impl FnMut(u32) -> bool) {
@@ -230,5 +316,60 @@ mod tests {
         });
         hit.sort();
         assert_eq!(hit, (0..100).filter(|i| i % 7 == 0).collect::<Vec<_>>());
+    }
+
+    /// Every pair of overlapping boxes, one from each tree, is met exactly once, whether the
+    /// first tree is descended whole or piece by piece from a cut.
+    #[test]
+    fn pairs_meet_every_overlap_once() {
+        // Short segments along a helix and points scattered near it: the shape of the
+        // T-junction search (cut edges and their ends along the operands' crossing curve).
+        let at = |t: f64| DVec3::new(t.cos(), t.sin(), 0.1 * t);
+        let edges: Vec<Aabb> = (0..300)
+            .map(|i| {
+                let (a, b) = (at(i as f64 * 0.05), at((i + 1) as f64 * 0.05));
+                Aabb::new(a.min(b), a.max(b))
+            })
+            .collect();
+        let points: Vec<Aabb> = (0..500)
+            .map(|i| {
+                let p = at(i as f64 * 0.031) + DVec3::splat(0.002 * ((i % 5) as f64 - 2.0));
+                Aabb::new(p, p)
+            })
+            .collect();
+        let (eb, pb) = (Bvh::build(&edges), Bvh::build(&points));
+        let mut want: Vec<(u32, u32)> = Vec::new();
+        for (i, e) in edges.iter().enumerate() {
+            for (j, p) in points.iter().enumerate() {
+                if e.overlaps(p, 0.0) {
+                    want.push((i as u32, j as u32));
+                }
+            }
+        }
+        assert!(want.len() > 150, "{}", want.len());
+        for count in [1, 7, 64, 10_000] {
+            let cut = eb.cut(count);
+            assert!(
+                cut.len() >= count.min(300 / LEAF_ITEMS),
+                "{count}: {}",
+                cut.len()
+            );
+            let mut met = Vec::new();
+            for &piece in &cut {
+                eb.visit_pairs(piece, &pb, |i, j| met.push((i, j)));
+            }
+            let mut overlapping: Vec<(u32, u32)> = met
+                .iter()
+                .copied()
+                .filter(|&(i, j)| edges[i as usize].overlaps(&points[j as usize], 0.0))
+                .collect();
+            // Sorted, not deduplicated: a pair met twice would show.
+            overlapping.sort();
+            assert_eq!(overlapping, want, "{count}");
+        }
+        // The order the items are visited in is a permutation of them.
+        let mut order = pb.order().to_vec();
+        order.sort();
+        assert_eq!(order, (0..500).collect::<Vec<_>>());
     }
 }

@@ -14,7 +14,11 @@ use crate::mesh::weld::Wide;
 /// `wide.delta` for the listed crack vertices) of the edge's interior and farther than that
 /// from its ends. An edge whose ends a wide weld moved (`drag`, per vertex, empty when none
 /// did) lies up to that move off where it was computed, so it takes vertices that much
-/// farther too. `O((E + k) log V)` with a BVH over the vertices.
+/// farther too.
+///
+/// The searched edges and the candidate vertices each get a BVH and both are descended
+/// together, once: a query of the vertices' tree per edge re-entered its top levels every time
+/// (~130 nodes per query for ~11 vertices found, most of the pass on real models).
 ///
 /// With `skip_matched`, an edge whose reverse some other ring already has is taken as matched
 /// and left alone: usually only the polygons on its two sides meet along it, and that is most
@@ -66,67 +70,120 @@ pub(super) fn insert_on_edges(
         .iter()
         .map(|&v| wide.reach(positions[v as usize], delta))
         .collect();
-    let boxes: Vec<Aabb> = points
-        .iter()
-        .map(|&v| {
-            let p = positions[v as usize];
-            Aabb::new(p, p)
+    let spots: Vec<DVec3> = points.iter().map(|&v| positions[v as usize]).collect();
+    let boxes: Vec<Aabb> = spots.iter().map(|&p| Aabb::new(p, p)).collect();
+    let bvh = Bvh::build(&boxes);
+    // Where each point comes in the tree's visiting order: ties of the order along an edge
+    // (below) fall to it, as they did when each edge queried the tree on its own.
+    let mut rank = vec![0u32; points.len()];
+    for (k, &item) in bvh.order().iter().enumerate() {
+        rank[item as usize] = k as u32;
+    }
+    // The edges to search, as (ring edge, first end, second end, drag), each with its box grown
+    // by the reach and drag: a point within reach of the edge lies in it.
+    let dragged = |v: u32| drag.get(v as usize).copied().unwrap_or(0.0);
+    let mut edges: Vec<(u32, u32, u32, f64)> = Vec::new();
+    let mut edge_boxes: Vec<Aabb> = Vec::new();
+    for (ring, &first) in rings.iter().zip(&first_edge) {
+        let n = ring.verts.len();
+        for k in 0..n {
+            let (ia, ib) = (ring.verts[k], ring.verts[(k + 1) % n]);
+            let (a, b) = (positions[ia as usize], positions[ib as usize]);
+            if matched[first + k] || (b - a).length_squared() == 0.0 {
+                continue;
+            }
+            let slack = dragged(ia).max(dragged(ib));
+            let grow = search + slack;
+            edges.push(((first + k) as u32, ia, ib, slack));
+            edge_boxes.push(Aabb::new(a.min(b) - grow, a.max(b) + grow));
+        }
+    }
+    // One descent of both trees finds every (edge, point) pair whose boxes meet, in parallel
+    // over pieces of the edges' tree; only the points on an edge are kept.
+    let edge_bvh = Bvh::build(&edge_boxes);
+    let pieces = edge_bvh.cut(64);
+    let mut hits: Vec<Hit> = pieces
+        .par_iter()
+        .flat_map_iter(|&piece| {
+            let mut found = Vec::new();
+            edge_bvh.visit_pairs(piece, &bvh, |e, item| {
+                let p = spots[item as usize];
+                if !edge_boxes[e as usize].contains_point(p, 0.0) {
+                    return;
+                }
+                let (at, ia, ib, slack) = edges[e as usize];
+                let w = points[item as usize];
+                if w == ia || w == ib {
+                    return;
+                }
+                let a = positions[ia as usize];
+                let d = positions[ib as usize] - a;
+                let r = reach[item as usize];
+                // Distance to the line by the cross product: `a + d·t` would carry the rounding
+                // of the edge's length (10²² on a 10³⁸-long edge).
+                let len = d.length_squared().sqrt();
+                let along = (p - a).dot(d) / len;
+                let off = (p - a).cross(d).length() / len;
+                if along > r && along < len - r && off <= r + slack {
+                    found.push(Hit {
+                        key: u64::from(at) << 32 | u64::from(rank[item as usize]),
+                        along,
+                        vertex: w,
+                    });
+                }
+            });
+            found
         })
         .collect();
-    let bvh = Bvh::build(&boxes);
+    if hits.is_empty() {
+        return;
+    }
+    hits.sort_unstable_by_key(|h| h.key);
+    // The hits of ring edge `k`: `hits[start[k]..start[k + 1]]`.
+    let mut start = vec![0u32; total + 1];
+    for h in &hits {
+        start[(h.key >> 32) as usize + 1] += 1;
+    }
+    for k in 0..total {
+        start[k + 1] += start[k];
+    }
     let each = rings.par_iter_mut().enumerate().with_min_len(64);
     each.for_each(|(r, ring)| {
         let first = first_edge[r];
         let n = ring.verts.len();
+        if start[first] == start[first + n] {
+            return;
+        }
         let mut out: SmallVec<[u32; 8]> = SmallVec::with_capacity(n);
-        let mut on_edge: Vec<(f64, u32)> = Vec::new();
         for k in 0..n {
             let (ia, ib) = (ring.verts[k], ring.verts[(k + 1) % n]);
-            let (a, b) = (positions[ia as usize], positions[ib as usize]);
             out.push(ia);
-            if matched[first + k] {
+            let found = &hits[start[first + k] as usize..start[first + k + 1] as usize];
+            if found.is_empty() {
                 continue;
             }
-            let d = b - a;
-            let len2 = d.length_squared();
-            if len2 == 0.0 {
-                continue;
-            }
-            let dragged = |v: u32| drag.get(v as usize).copied().unwrap_or(0.0);
-            let slack = dragged(ia).max(dragged(ib));
-            let query = Aabb::new(a.min(b), a.max(b));
-            on_edge.clear();
-            bvh.visit(
-                |bx| bx.overlaps(&query, search + slack),
-                |item| {
-                    let w = points[item as usize];
-                    if w != ia && w != ib {
-                        let p = positions[w as usize];
-                        let r = reach[item as usize];
-                        // Distance to the line by the cross product: `a + d·t` would carry
-                        // the rounding of the edge's length (10²² on a 10³⁸-long edge).
-                        let len = len2.sqrt();
-                        let along = (p - a).dot(d) / len;
-                        let off = (p - a).cross(d).length() / len;
-                        if along > r && along < len - r && off <= r + slack {
-                            on_edge.push((along, w));
-                        }
-                    }
-                    false
-                },
-            );
+            let mut on_edge: SmallVec<[&Hit; 4]> = found.iter().collect();
+            let d = positions[ib as usize] - positions[ia as usize];
             // Order by comparing the points themselves: their distances from `a` can round to
             // the same value on a long edge (1 and −1 are both 10³⁸ from an end at 10³⁸).
             on_edge.sort_by(|x, y| {
-                (positions[x.1 as usize] - positions[y.1 as usize])
+                (positions[x.vertex as usize] - positions[y.vertex as usize])
                     .dot(d)
                     .total_cmp(&0.0)
-                    .then(x.0.total_cmp(&y.0))
+                    .then(x.along.total_cmp(&y.along))
             });
-            out.extend(on_edge.iter().map(|&(_, w)| w));
+            out.extend(on_edge.iter().map(|h| h.vertex));
         }
         ring.verts = out;
     });
+}
+
+/// A vertex found on a ring edge: `key` is the ring edge's index and the vertex's rank in the
+/// search tree's order, `along` its distance along the edge.
+struct Hit {
+    key: u64,
+    along: f64,
+    vertex: u32,
 }
 
 /// For each ring edge (rings in order, edges in ring order), whether some ring, or an
