@@ -105,10 +105,20 @@ pub(crate) enum Expect {
 }
 
 /// The refusal of a result that should be a closed 2-manifold and is not: a fault, exit 2.
+/// Where it is open, the message says what to change: the open results seen come from faces
+/// of two operands that nearly coincide (a sphere less itself turned 10⁻⁴°: their facets cross at
+/// 1.7·10⁻⁶ rad, and the two cut lines on each facet land a rounding error apart).
 pub(crate) fn not_written(out: &Path, report: &MeshReport) -> Failure {
+    let hint = if report.boundary_edges > 0 {
+        "\nAn open result most often comes from faces of the operands that nearly coincide without being \
+         equal (one operand a copy of another turned or moved by a hair): make such faces \
+         coincide exactly, or move the operands clearly apart."
+    } else {
+        ""
+    };
     Failure {
         message: format!(
-            "the result is not a closed 2-manifold, so {} is not written: {report}",
+            "the result is not a closed 2-manifold, so {} is not written: {report}{hint}",
             out.display()
         ),
         code: 2,
