@@ -7,7 +7,7 @@
 //! of a grid vertex. Both are valid topology but useless geometry, and slicers, FEM meshers and
 //! manifold3d treat them as defects.
 //!
-//! Two local operations remove them, each moving the surface by at most [`SPECK_MOVE`] × d:
+//! Local operations remove them, each moving the surface by at most [`SPECK_MOVE`] × d:
 //!
 //! * **Flip** the needle's longest edge `ab` (apex `v`, neighbour `bac`) to `vc`. The new
 //!   triangles lie in the tetrahedron `abcv`, whose every point is within the apex height of
@@ -17,8 +17,11 @@
 //!   triangles beside it; where that would change the volume, `q` moves off its place along
 //!   the fan's normal by what puts it back (a collapse keeps the volume). The surface moves by
 //!   about `|pq|`. Taken when the needle has a short edge (a *spike* or a speck).
+//! * **Stretch** a spike no flip or collapse can take (the tip of a thin wedge): one end of its
+//!   short edge moves away from the other along it, about the needle's height, until the
+//!   area is half again the threshold ([`Work::plan_stretch`]).
 //!
-//! Neither is taken where it would change topology or fold the surface: a flip needs the new
+//! None is taken where it would change topology or fold the surface: a flip needs the new
 //! edge not to exist already; a collapse needs the link condition (the two ends share exactly
 //! the two opposite vertices as neighbours) and a shell of more than four triangles; both need
 //! every new triangle to keep its orientation and have more than zero area. A needle that no
@@ -243,11 +246,21 @@ impl Work {
             consider(&mut collapses, self.plan_collapse(t, q, p));
         }
         let best = if short_edge {
-            collapses.or(flips)
+            let mut stretches: Option<(f64, Op)> = None;
+            if collapses.is_none() && flips.is_none() {
+                let (p, q) = (tri[shortest], tri[(shortest + 1) % 3]);
+                consider(&mut stretches, self.plan_stretch(t, p, q));
+                consider(&mut stretches, self.plan_stretch(t, q, p));
+            }
+            collapses.or(flips).or(stretches)
         } else {
             flips.or(collapses)
         };
         match best?.1 {
+            Op::Move { v, at } => {
+                self.positions[v as usize] = at;
+                Some(self.around[v as usize].to_vec())
+            }
             Op::Flip { t, u, new_t, new_u } => Some(self.apply_flip(t, u, new_t, new_u)),
             Op::Collapse {
                 from,
@@ -412,6 +425,48 @@ impl Work {
         })
     }
 
+    /// Moving `from`, an end of needle `t`'s short edge, away from its other end `to` along
+    /// that edge, until the needle's area is half again the threshold. Where a thin wedge ends
+    /// in a face narrower than the bound (a prism's cap turned 0.001° passing 3.9e-10 from a
+    /// cube's corner: an end face 3.9e-10 × 4.4e-5), no flip applies and every collapse folds
+    /// the wedge's tip into a sheet of no thickness, whose removal would cut 4.4e-5 off the
+    /// wedge; this moves one vertex by about the needle's height and keeps the wedge. Checked
+    /// as a collapse is: every triangle around `from` keeps its orientation and area.
+    fn plan_stretch(&self, t: u32, from: u32, to: u32) -> Option<Plan> {
+        let tri = self.tris[t as usize];
+        let (source, target) = (self.positions[from as usize], self.positions[to as usize]);
+        let grow = 1.5 * self.threshold(tri) / area(self.corners(tri));
+        let at = target + (source - target) * grow;
+        let (mut dev, mut swept) = (0.0f64, 0.0);
+        for &u in &self.around[from as usize] {
+            let old = self.tris[u as usize];
+            let before = self.corners(old);
+            let after = old.map(|w| {
+                if w == from {
+                    at
+                } else {
+                    self.positions[w as usize]
+                }
+            });
+            let was_needle = area(before) < self.threshold(old);
+            if is_zero_area(after)
+                || twice_normal(after).dot(twice_normal(before)) <= 0.0
+                || (!was_needle && area(after) < self.threshold(old))
+            {
+                return None;
+            }
+            swept += (twice_normal(before).dot(at - source) / 6.0).abs();
+            if !was_needle {
+                dev = dev.max(plane_distance(before, at));
+            }
+        }
+        Some(Plan {
+            dev,
+            swept,
+            op: Op::Move { v: from, at },
+        })
+    }
+
     /// The ends of edge `pq` share exactly the neighbours `o1` and `o2`.
     fn link_condition(&self, p: u32, q: u32, o1: u32, o2: u32) -> bool {
         let neighbours = |v: u32| -> SmallVec<[u32; 16]> {
@@ -528,6 +583,8 @@ enum Op {
         t1: u32,
         t2: u32,
     },
+    /// Vertex `v` to `at`.
+    Move { v: u32, at: DVec3 },
 }
 
 /// The distance of `p` from the plane of triangle `c` (its distance from `c[0]` if `c` is flat).
