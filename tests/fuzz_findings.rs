@@ -1,11 +1,9 @@
-//! Every input the fuzz targets in `fuzz/` found failing, replayed as a named test (the bytes
-//! are the fuzz input; `fuzz/fuzz_targets/program.rs` decodes and checks boolean programs).
+//! Every input the `booleans` fuzz target in `fuzz/` found failing, replayed as a named test
+//! (the bytes are the fuzz input; `fuzz/fuzz_targets/program.rs` decodes and checks boolean
+//! programs). The `scenes` target's findings are in `fuzz_findings_scenes.rs`.
 
 #[path = "../fuzz/fuzz_targets/program.rs"]
 mod program;
-#[path = "../fuzz/fuzz_targets/scene_check.rs"]
-#[allow(dead_code)]
-mod scene_check;
 
 fn replay(data: &[u8]) {
     replay_with(data, true);
@@ -97,60 +95,6 @@ fn a_flat_shell_without_tiny_turns() {
     ]);
 }
 
-/// The BSP route of a scene document (`tests/fuzz_findings/scene_<i>.json`) at the coarse
-/// settings of the `scenes` target: tolerance 1/20, cell 1/12 of the diagonal.
-fn finding_scene(name: &str) -> bspcsg::Scene {
-    let path = format!(
-        "{}/tests/fuzz_findings/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    bspcsg::Scene::from_json_str(&std::fs::read_to_string(&path).unwrap()).unwrap()
-}
-
-/// The report of a finding's bake at resolution 12, as the `scenes` target bakes it.
-fn bake_report(name: &str) -> bspcsg::MeshReport {
-    finding_scene(name)
-        .bake(&bspcsg::BakeOptions::with_resolution(12))
-        .unwrap()
-        .report()
-}
-
-fn coarse_bsp_report(name: &str) -> bspcsg::MeshReport {
-    let scene = finding_scene(name);
-    let d = scene.bbox().diagonal();
-    let coarse = bspcsg::TessellationOptions {
-        tolerance: Some(d / 20.0),
-        cell: Some(d / 12.0),
-        max_angle: None,
-    };
-    scene.to_solid(&coarse).unwrap().to_mesh().report()
-}
-
-/// Found by a 10-minute run of the `scenes` target: variations of the example bracket whose
-/// coarse BSP route gave a flat inverted shell. Closed since the BSP's cell planes leave a
-/// polygon whole on each side.
-#[test]
-fn scenes_bsp_route_of_coarse_brackets() {
-    for i in [1, 2, 4, 5] {
-        let report = coarse_bsp_report(&format!("scene_{i}"));
-        assert!(
-            report.is_closed_manifold() && report.needles == 0,
-            "scene_{i}: {report}"
-        );
-    }
-}
-
-/// From the same run: a bracket variant whose coarse BSP route kept a needle, fixed as
-/// `a_needle_that_no_flip_or_collapse_removes`.
-#[test]
-fn scene_bsp_route_keeps_a_needle() {
-    let report = coarse_bsp_report("scene_3");
-    assert!(
-        report.is_closed_manifold() && report.needles == 0,
-        "scene_3: {report}"
-    );
-}
-
 /// Found by a 10-minute run of the `booleans` target with tiny rotations off (artifact
 /// crash-82421d33…): step 0 leaves one needle (a spike 1.5e-8 long on a shell 3.5 times the
 /// region the operands met in), fixed as `a_needle_that_no_flip_or_collapse_removes`.
@@ -206,143 +150,6 @@ fn mesh_volume_off_the_solid_at_the_third_step() {
         ],
         false,
     );
-}
-
-/// Found by a second 10-minute run of the `scenes` target: a document whose coarse BSP route
-/// left two needles on a shell larger than the region where the last boolean's operands met;
-/// fixed as `a_needle_that_no_flip_or_collapse_removes`.
-#[test]
-fn scene_bsp_route_needles_on_a_shell_beyond_the_region() {
-    let report = coarse_bsp_report("bsp_3");
-    assert!(
-        report.is_closed_manifold() && report.needles == 0,
-        "bsp_3: {report}"
-    );
-}
-
-/// From the same run: documents whose coarse BSP route left 14 needles (`bsp_1`, one is left)
-/// and 2 (`bsp_2`, both left). `bsp_1`'s profile turns back on itself at (0.12, 0.6) by
-/// 2.35·10⁻⁴ rad, a notch 3·10⁻⁵ wide; the needle left is the notch's end, on a neck whose
-/// short edge no collapse can take without pinching the surface. `bsp_2`'s are triangles 0.02 across, real detail where a beam
-/// meets a bolt hole, on a shell 12,000 across (a rectangle 2·10⁴ wide): the report counts them
-/// by the shell's diagonal, but `to_mesh` judges needles at no more than 16 times the region
-/// where the last boolean's operands met, as the fuzz target now does (`scene_check.rs`).
-#[test]
-fn scenes_bsp_route_leave_needles() {
-    for i in 1..=2 {
-        let name = format!("bsp_{i}");
-        if let Err(e) = scene_check::check_bsp_route(&finding_scene(&name)) {
-            panic!("{name}: {e}");
-        }
-    }
-}
-
-/// Found by a second 10-minute run of the `scenes` target: ten documents (I-beam and other
-/// variants) whose bake at resolution 12 leaves four needles in a second shell of twelve triangles: a rod 1.2e-6 across and 0.6
-/// long (volume 4.3e-13) along a row of grid vertices where the field is a hair below zero.
-/// Its end caps (area 3.59999999995e-13 against a threshold of 3.6e-13 of its 0.6 diagonal)
-/// cannot collapse without changing the rod's topology. Marching cubes now counts a point
-/// inside by less than the needle pass's largest move as a hair outside, so no such shell is made.
-#[test]
-fn bakes_of_i_beam_variants() {
-    for i in 1..=10 {
-        let report = bake_report(&format!("bake_{i}"));
-        assert!(
-            report.is_closed_manifold() && report.needles == 0,
-            "bake_{i}: {report}"
-        );
-    }
-}
-
-/// Found by a 9-minute `scenes` run whose binary was built without the hair rule above: bakes
-/// leaving 4 or 8 needles in small extra shells; they pass with it.
-#[test]
-fn bakes_with_speck_shells_found_by_a_second_run() {
-    for i in 1..=4 {
-        let report = bake_report(&format!("bake_thin_{i}"));
-        assert!(
-            report.is_closed_manifold() && report.needles == 0,
-            "bake_thin_{i}: {report}"
-        );
-    }
-}
-
-/// From the same run: a document whose coarse BSP route leaves 40 needles in three shells: a
-/// profile reaching 10⁶ from a beam 1 across puts bars 0.12 thick and the beam's 0.2-wide end
-/// faces on shells 10⁶ across. They are whole parts, not slivers: no flip or collapse removes
-/// them without changing topology, and `to_mesh`, judging at the region where the last
-/// boolean's operands met, keeps them (the report still counts them by the shells' diagonals).
-#[test]
-fn scene_bsp_route_leaves_forty_needles() {
-    let scene = finding_scene("bsp_4");
-    if let Err(e) = scene_check::check_bsp_route(&scene) {
-        panic!("bsp_4: {e}");
-    }
-    let solid = scene
-        .to_solid(&scene_check::coarse(&scene).unwrap())
-        .unwrap();
-    let mesh = solid.to_mesh();
-    let report = mesh.report();
-    assert_eq!(report.needles, 40, "bsp_4: {report}");
-    // Kept whole: the mesh holds the solid's volume.
-    assert!(
-        (mesh.volume() - solid.volume()).abs() < 1e-9 * solid.volume(),
-        "bsp_4: mesh volume {} against the solid's {}",
-        mesh.volume(),
-        solid.volume()
-    );
-}
-
-/// Found by a 10-minute run of the `scenes` target (artifact crash-dd29a0ee…): the example
-/// bracket with a mounting hole of radius 2·10⁻¹⁰⁶. At x = 1.5 the hole's circle rounds onto
-/// its centre, so its faces are flat, and the coarse BSP route left 72 boundary edges. A
-/// primitive thinner where it lies than twice the weld distance of its coordinates' rounding
-/// floor is now refused as beyond precision (`bsp_5`, and below the box minus that hole alone).
-#[test]
-fn scene_with_a_hole_thinner_than_rounding() {
-    let scene = finding_scene("bsp_5");
-    if let Err(e) = scene_check::check_bsp_route(&scene) {
-        panic!("bsp_5: {e}");
-    }
-    let minimal = bspcsg::Scene::from_json_str(
-        r#"{"op": "subtract", "children": [
-            {"kind": "sdf_primitive", "data": {"primitive_type": "box", "size": [3.0, 0.5, 3.0]}},
-            {"kind": "sdf_primitive", "pos": [1.5, 0, -1.0],
-             "data": {"primitive_type": "cylinder", "radius": 2e-103, "height": 2.0}}
-        ]}"#,
-    )
-    .unwrap();
-    let options = scene_check::coarse(&minimal).unwrap();
-    match minimal.to_solid(&options) {
-        Err(bspcsg::Error::BeyondPrecision { magnitude, .. }) => {
-            assert!((magnitude - 1.5).abs() < 1e-12, "{magnitude}");
-        }
-        other => panic!("want beyond precision, got {other:?}"),
-    }
-}
-
-/// Found by a second 10-minute run of the `scenes` target (libFuzzer seed 2, artifact
-/// crash-73f3fb0b…, at about 545 s), minimised to four operands (`bsp_6`): the baked smooth
-/// union of the example bracket's plate and boss, minus a bore, a union of two mounting holes
-/// (one of radius 5.2, wider than the plate) and a slot turned by (8°, 45°, 1°). The coarse
-/// BSP route leaves 3 boundary edges, a slit of zero width on the plane y = 1: vertex
-/// (−0.67355, 1, 0.38405) lies 1.15e-10 off the edge from (−0.67898, 1, 0.37351) to
-/// (−0.61627, 1, 0.49512), 3.6 weld distances at the boolean's tolerance 4.0e-12, and no repair
-/// pass splits the edge there. The solid's polygons bound the right volume (0.53204365322 by
-/// both the solid and its fan mesh). A third run (seed 3, artifact crash-e5c509be…, after
-/// 289,404 executions) found the same kind (`bsp_7`, another bracket variant): a slit of three
-/// collinear vertices on y = 1, the mounting holes' top plane again. The first pass leaves
-/// slits where one point was computed twice 2.4·10⁻¹⁰ apart; the wider weld that joins them
-/// drags the edges at that point, and the vertex lay within reach of the edge as computed, not
-/// as dragged. Closed since the T-junction search allows an edge the distance a wide weld
-/// moved its ends (`mesh/repair/mod.rs`, `wide_drag`).
-#[test]
-fn scene_bsp_route_crack_where_a_bake_meets_four_cuts() {
-    for name in ["bsp_6", "bsp_7"] {
-        if let Err(e) = scene_check::check_bsp_route(&finding_scene(name)) {
-            panic!("{name}: {e}");
-        }
-    }
 }
 
 /// Found by the 10-minute `booleans` run with tiny rotations on (coplanar5's artifacts; 22 of its
