@@ -73,12 +73,12 @@ fn scene_bsp_route_needles_on_a_shell_beyond_the_region() {
     );
 }
 
-/// From the same run: documents whose coarse BSP route left 14 needles (`bsp_1`, one is left)
-/// and 2 (`bsp_2`, both left). `bsp_1`'s profile turns back on itself at (0.12, 0.6) by
-/// 2.35·10⁻⁴ rad, a notch 3·10⁻⁵ wide; the needle left is the notch's end, on a neck whose
-/// short edge no collapse can take without pinching the surface. `bsp_2`'s are triangles 0.02 across, real detail where a beam
-/// meets a bolt hole, on a shell 12,000 across (a rectangle 2·10⁴ wide): the report counts them
-/// by the shell's diagonal, but `to_mesh` judges needles at no more than 16 times the region
+/// From the same run: documents whose coarse BSP route left 14 needles (`bsp_1`, one is left) and 2
+/// (`bsp_2`, both left). `bsp_1`'s profile turns back on itself at (0.12, 0.6) by 2.35·10⁻⁴ rad, a
+/// notch 3·10⁻⁵ wide; the needle left is the notch's end, on a neck whose short edge no collapse
+/// can take without pinching the surface. `bsp_2`'s are triangles 0.02 across, real detail where a
+/// beam meets a bolt hole, on a shell 12,000 across (a rectangle 2·10⁴ wide): the report counts
+/// them by the shell's diagonal, but `to_mesh` judges needles at no more than 16 times the region
 /// where the last boolean's operands met, as the fuzz target now does (`scene_check.rs`).
 #[test]
 fn scenes_bsp_route_leave_needles() {
@@ -91,11 +91,12 @@ fn scenes_bsp_route_leave_needles() {
 }
 
 /// Found by a second 10-minute run of the `scenes` target: ten documents (I-beam and other
-/// variants) whose bake at resolution 12 leaves four needles in a second shell of twelve triangles: a rod 1.2e-6 across and 0.6
-/// long (volume 4.3e-13) along a row of grid vertices where the field is a hair below zero.
-/// Its end caps (area 3.59999999995e-13 against a threshold of 3.6e-13 of its 0.6 diagonal)
-/// cannot collapse without changing the rod's topology. Marching cubes now counts a point
-/// inside by less than the needle pass's largest move as a hair outside, so no such shell is made.
+/// variants) whose bake at resolution 12 leaves four needles in a second shell of twelve triangles:
+/// a rod 1.2e-6 across and 0.6 long (volume 4.3e-13) along a row of grid vertices where the field
+/// is a hair below zero. Its end caps (area 3.59999999995e-13 against a threshold of 3.6e-13 of its
+/// 0.6 diagonal) cannot collapse without changing the rod's topology. Marching cubes now counts a
+/// point inside by less than the needle pass's largest move as a hair outside, so no such shell is
+/// made.
 #[test]
 fn bakes_of_i_beam_variants() {
     for i in 1..=10 {

@@ -31,11 +31,11 @@ fn a_tiny_cube_at_a_unit_cube_corner_never_gives_a_broken_result_with_success() 
     }
 }
 
-/// Item 10: a sphere less itself turned 10⁻⁴° about a tilted axis. Its facets cross their
-/// twins at 1.7·10⁻⁶ rad, which the kernel does not yet resolve (issue 11: slits and flat
-/// shells). The promise still holds: the right answer (closed, the volume of the slivers, never
-/// negative), or exit 2 saying why and what to change, and nothing written. (The refusal
-/// comes after one repair pass: `repair::tests::cracks_along_whole_crossings_end_the_repair_early`.)
+/// Item 10: a sphere less itself turned 10⁻⁴° about a tilted axis. Its facets cross their twins at
+/// 1.7·10⁻⁶ rad, which the kernel does not yet resolve (issue 11: slits and flat shells). The
+/// promise still holds: the right answer (closed, the volume of the slivers, never negative), or
+/// exit 2 saying why and what to change, and nothing written. (The refusal comes after one repair
+/// pass: `repair::tests::cracks_along_whole_crossings_end_the_repair_early`.)
 #[test]
 fn a_sphere_less_itself_turned_a_hair_is_right_or_refused() {
     let dir = Scratch::new("sphere-turned");

@@ -36,27 +36,26 @@ fn cube_minus_cube_rotated_a_millionth_degree() {
     assert_volume(mesh.volume(), want, 1e-3, "cube - rotated cube");
 }
 
-/// The unit cube minus itself turned about a skew axis through a corner, by angles whose
-/// facets cross their twins at 5e-6 … 3.5e-11 rad. Each operand cuts its facets by the twin's
-/// plane at its own edges, a rounding error over the angle apart (far beyond the weld) unless
-/// the vertex on the same three planes is shared; the polygons' volume is then the first-order
-/// one, θ/2 ∫ |(ŵ × x)·n| dA over the cube's faces = 1.4576096e-2 × θ in degrees (quadrature).
-/// At 3e-4° and 1e-4° (faces 5e-6 and 1.7e-6 rad apart, each cube's corners 1e-11 and 1e-12 off
-/// the other's faces) a vertex counts as on a nearly parallel plane only near the crossing
-/// line (`ON_BAND_BELOW` in `polygon/mod.rs`), and both the solid and the mesh have the
-/// first-order volume. From 1e-5° to 1e-7° the first repair pass leaves two flaps 1e-10 across
-/// at corners where four planes meet to rounding; filled flat (the flap removed) before any
-/// wider weld, the mesh keeps the first-order volume (a wider weld closed them by flattening
-/// two wedges 3e-10 thick: 4.2 % less). At 3e-6° and 2e-6° the filled pass is a closed
-/// 2-manifold whose pairing still listed an edge's two half-edges as cracks; taken as clean, it
-/// keeps the first-order volume (before, a weld 1.4e-7 wide was taken: 35 % and 4 % less). So
-/// the mesh's volume is checked from 3e-4° to 1e-7° (1.745e-8 rad is 1e-6°). At 1e-5° the corners lie 1.4e-14 off the twin faces, inside the
-/// noise of a point computed on the plane but not of one given (`given_noise` in
-/// `polygon/split.rs`): the polygons' volume is 2.5e-4 above the first order (12.6 % when a
-/// corner counted as on the twin face), checked to 1e-3. Open: at 1e-6° they lie 1.4e-16 off,
-/// below one unit in the last place, and the polygons' volume is 9.8 % high (not checked); from
-/// 1e-8° down the first weld (1.4e-11) reaches across the wedges (3e-11 thick at 1e-8°) and the
-/// mesh's volume is 4–54 % low.
+/// The unit cube minus itself turned about a skew axis through a corner, by angles whose facets
+/// cross their twins at 5e-6 … 3.5e-11 rad. Each operand cuts its facets by the twin's plane at its
+/// own edges, a rounding error over the angle apart (far beyond the weld) unless the vertex on the
+/// same three planes is shared; the polygons' volume is then the first-order one, θ/2 ∫ |(ŵ × x)·n|
+/// dA over the cube's faces = 1.4576096e-2 × θ in degrees (quadrature). At 3e-4° and 1e-4° (faces
+/// 5e-6 and 1.7e-6 rad apart, each cube's corners 1e-11 and 1e-12 off the other's faces) a vertex
+/// counts as on a nearly parallel plane only near the crossing line (`ON_BAND_BELOW` in
+/// `polygon/mod.rs`), and both the solid and the mesh have the first-order volume. From 1e-5° to
+/// 1e-7° the first repair pass leaves two flaps 1e-10 across at corners where four planes meet to
+/// rounding; filled flat (the flap removed) before any wider weld, the mesh keeps the first-order
+/// volume (a wider weld closed them by flattening two wedges 3e-10 thick: 4.2 % less). At 3e-6° and
+/// 2e-6° the filled pass is a closed 2-manifold whose pairing still listed an edge's two half-edges
+/// as cracks; taken as clean, it keeps the first-order volume (before, a weld 1.4e-7 wide was
+/// taken: 35 % and 4 % less). So the mesh's volume is checked from 3e-4° to 1e-7° (1.745e-8 rad is
+/// 1e-6°). At 1e-5° the corners lie 1.4e-14 off the twin faces, inside the noise of a point
+/// computed on the plane but not of one given (`given_noise` in `polygon/split.rs`): the polygons'
+/// volume is 2.5e-4 above the first order (12.6 % when a corner counted as on the twin face),
+/// checked to 1e-3. Open: at 1e-6° they lie 1.4e-16 off, below one unit in the last place, and the
+/// polygons' volume is 9.8 % high (not checked); from 1e-8° down the first weld (1.4e-11) reaches
+/// across the wedges (3e-11 thick at 1e-8°) and the mesh's volume is 4–54 % low.
 #[test]
 fn cube_minus_cube_turned_about_a_skew_axis() {
     let cube = Solid::cube(1.0)

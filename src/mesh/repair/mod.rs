@@ -96,8 +96,8 @@ pub(crate) struct Ring {
 /// repair, its mesh returned open (the indexed or quick pass too: no later one closes such a
 /// mesh). Where a few cracks remain, a pass first fills the flat ones (taken only if that closes
 /// the mesh); else each further pass lets the points near them weld and join edges ten times
-/// farther, and the pass with the fewest cracks is kept. Every pass drops closed shells thinner than the weld (see
-/// [`thin`]).
+/// farther, and the pass with the fewest cracks is kept. Every pass drops closed shells thinner
+/// than the weld (see [`thin`]).
 pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> Mesh {
     counted_repair(polygons, eps, index).0
 }

@@ -65,9 +65,9 @@ pub(crate) fn pair_budget(triangles: usize) -> usize {
 
 /// Work per triangle in the budget of the check for crossing triangles (see
 /// [`Mesh::crossing_triangle_pairs`](crate::Mesh::crossing_triangle_pairs)), in units of one
-/// candidate pair (an exact test costs 8 more). Valid meshes take 27–55: the shared models (rocker-arm
-/// 28, fandisk 31, stanford-bunny 34 candidates a triangle, under 2 exact tests), a UV sphere
-/// of 261,120 triangles 54 (40 candidates, 1.8 exact tests).
+/// candidate pair (an exact test costs 8 more). Valid meshes take 27–55: the shared models
+/// (rocker-arm 28, fandisk 31, stanford-bunny 34 candidates a triangle, under 2 exact tests), a UV
+/// sphere of 261,120 triangles 54 (40 candidates, 1.8 exact tests).
 pub const PAIR_BUDGET_PER_TRIANGLE: usize = 128;
 
 /// Work any mesh may do in that budget beside [`PAIR_BUDGET_PER_TRIANGLE`], so small crowded
