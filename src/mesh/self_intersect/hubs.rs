@@ -32,6 +32,8 @@ pub(super) struct Settled {
     /// triangles there is settled, else [`NO_POINT`]. Two triangles with a corner at one such
     /// point need no test.
     pub point: Vec<u32>,
+    /// Whether some settled point holds more than one vertex.
+    pub apart_vertices: bool,
     /// Per vertex: how many triangles meet at its settled point, else 0.
     pub weight: Vec<u32>,
     /// The crossing pairs the sweeps found.
@@ -117,13 +119,14 @@ pub(super) fn settle(
             Some((crossing, candidates.len()))
         })
         .collect();
-    let (mut pairs, mut tested) = (Vec::new(), 0);
+    let (mut pairs, mut tested, mut apart_vertices) = (Vec::new(), 0, false);
     for ((g, fan), result) in hubs.iter().zip(&fans).zip(swept) {
         let Some((crossing, count)) = result else {
             continue;
         };
         pairs.extend(crossing);
         tested += count;
+        apart_vertices |= g.len() > 1;
         for &v in g {
             point[v as usize] = g[0];
             weight[v as usize] = fan.len() as u32;
@@ -131,6 +134,7 @@ pub(super) fn settle(
     }
     Settled {
         point,
+        apart_vertices,
         weight,
         pairs,
         tested,

@@ -70,19 +70,23 @@ pub(crate) fn pair_budget(triangles: usize) -> usize {
 
 /// Work per triangle in the budget of the check for crossing triangles (see
 /// [`Mesh::crossing_triangle_pairs`](crate::Mesh::crossing_triangle_pairs)), in units of one
-/// candidate pair (an exact test costs 8 more). Valid meshes take 27–55: the shared models
+/// candidate pair (an exact test costs 24 more). Valid meshes take 27–90: the shared models
 /// (rocker-arm 28, fandisk 31, stanford-bunny 34 candidates a triangle, under 2 exact tests), a UV
-/// sphere of 261,120 triangles 54 (40 candidates, 1.8 exact tests).
+/// sphere of 261,120 triangles 85 (40 candidates, 1.8 exact tests).
 pub const PAIR_BUDGET_PER_TRIANGLE: usize = 128;
 
 /// Work any mesh may do in that budget beside [`PAIR_BUDGET_PER_TRIANGLE`], so small crowded
 /// meshes are still decided (a
-/// 1,442-triangle file of the shared models takes 500,000: 128 candidates and 27 exact tests a
+/// 1,442-triangle file of the shared models takes 1.2·10⁶: 128 candidates and 27 exact tests a
 /// triangle).
 pub const PAIR_BUDGET_BASE: usize = 1 << 21;
 
-/// What an exact test adds to a candidate pair's cost in [`pair_budget`].
-const EXACT_TEST_COST: usize = 8;
+/// What an exact test adds to a candidate pair's cost in [`pair_budget`]. Measured by
+/// instruction counts: a candidate pair costs about 230 instructions with its share of the walk
+/// (stanford-bunny), an exact test as many where the filters decide it, but about 5,500 where
+/// the predicates go adaptive (the folded fan's coplanar pairs), which is what crowded hostile
+/// input brings; so the budget bounds time by the costly kind.
+const EXACT_TEST_COST: usize = 24;
 
 /// Triangles around a vertex of at least this valence whose fan is embedded are grouped in the
 /// tree (below it a vertex's few pairs cost less than the lost spatial order of the tree).
@@ -142,11 +146,18 @@ fn search(positions: &[DVec3], triangles: &[[u32; 3]]) -> Search {
     let bvh = Bvh::build_grouped(&solid_boxes, &fans.of_solid);
     // Two triangles with a corner at one settled point (an embedded fan's vertex, or a point
     // a sweep settled) need no test: they do not cross, or the sweep tested them.
-    let point = &settled.point;
+    // Where every settled point is one vertex, sharing it is sharing that index (three
+    // compares, no loads: this runs for every pair the tree offers).
+    let (point, apart_vertices) = (&settled.point, settled.apart_vertices);
     let share_settled = |t: [u32; 3], u: [u32; 3]| {
         t.iter().any(|&v| {
             let p = point[v as usize];
-            p != NO_POINT && u.iter().any(|&x| point[x as usize] == p)
+            p != NO_POINT
+                && if apart_vertices {
+                    u.iter().any(|&x| point[x as usize] == p)
+                } else {
+                    u.contains(&v)
+                }
         })
     };
     let found_so_far = AtomicUsize::new(settled.pairs.len());
