@@ -180,7 +180,7 @@ fn search(positions: &[DVec3], triangles: &[[u32; 3]]) -> Search {
             let (tri, b, tc, thin_t) = (triangles[t], boxes[t], corners(t), thin[t]);
             let (mut offers, mut tests, mut work) = (0, 0, 0);
             bvh.visit_skipping(
-                |other| !fans.queries(own, other),
+                |other| !fans.queries(own, other) || fans.beside(other, tc),
                 |node| node.overlaps(&b, 0.0) && !(thin_t && apart::apart(tc, node)),
                 |k| {
                     offers += 1;
@@ -249,6 +249,9 @@ struct Fans {
     centre: Vec<DVec3>,
     /// The box of each group's triangles.
     reach: Vec<Aabb>,
+    /// For a group whose triangles all lie in one plane (a cap's or a cone base's fan), three
+    /// points of that plane.
+    plane: Vec<Option<[DVec3; 3]>>,
 }
 
 impl Fans {
@@ -286,11 +289,43 @@ impl Fans {
                 g
             })
             .collect();
+        // A group is flat when every one of its triangles lies exactly in its first one's plane.
+        let mut plane: Vec<Option<[DVec3; 3]>> = vec![None; centre.len()];
+        let mut flat = vec![true; centre.len()];
+        for (&t, &g) in solid.iter().zip(&of_solid) {
+            if g == NO_GROUP || !flat[g as usize] {
+                continue;
+            }
+            let c = triangles[t as usize].map(|i| positions[i as usize]);
+            match plane[g as usize] {
+                None => plane[g as usize] = Some(c),
+                Some(p) => flat[g as usize] = c.iter().all(|&q| orient(p, q) == 0.0),
+            }
+        }
+        for (p, flat) in plane.iter_mut().zip(flat) {
+            if !flat {
+                *p = None;
+            }
+        }
         Fans {
             of_solid,
             centre,
             reach,
+            plane,
         }
+    }
+
+    /// Whether triangle `t` cannot cross any triangle of group `g` because the group is flat and
+    /// `t` lies on one closed side of its plane, not in it: `t`'s interior is then strictly off
+    /// the plane and its edges at most touch it, so no edge of either passes through the other
+    /// and they are not coplanar. (A cone's apex fan over its flat base fan, whose slivers meet
+    /// the boxes of many of the base's triangles, needs no pair tested.)
+    fn beside(&self, g: u32, t: [DVec3; 3]) -> bool {
+        let Some(Some(p)) = self.plane.get(g as usize) else {
+            return false;
+        };
+        let s = t.map(|q| orient(*p, q));
+        (s.iter().all(|&x| x >= 0.0) || s.iter().all(|&x| x <= 0.0)) && s.iter().any(|&x| x != 0.0)
     }
 
     /// Whether a triangle of group `own` looks for its pairs with the triangles of group
