@@ -140,7 +140,13 @@ impl Tree {
                     }
                     break;
                 }
-                match w.polygon.split(&node.plane, eps) {
+                let split = if is_face {
+                    w.polygon.split(&node.plane, eps)
+                } else {
+                    cell_side(&w, &node.plane, eps)
+                        .unwrap_or_else(|| w.polygon.split(&node.plane, eps))
+                };
+                match split {
                     Split::Front => w.link = node.front,
                     Split::Back => w.link = node.back,
                     Split::Coplanar => {
@@ -234,6 +240,26 @@ struct Scratch {
     stack: Vec<Work>,
     labelled: FxHashMap<u32, (DVec3, Label, bool)>,
     last: Option<(DVec3, Label)>,
+}
+
+/// [`Polygon::split`]'s answer by a cell's axis-aligned plane for a fragment whose box lies
+/// wholly farther than `eps` to one side of it, from the box alone. The plane's distance is
+/// then `v[axis] - anchor[axis]` exactly (the normal's other components are zero) and the
+/// box's extreme is the extreme vertex, so this is `split`'s own test, bit for bit, without
+/// its loop over the vertices. `None` where the box does not settle it.
+fn cell_side(w: &Work, plane: &crate::geom::Plane, eps: f64) -> Option<Split> {
+    let axis = plane.normal.abs().max_position();
+    let at = plane.anchor[axis];
+    if w.polygon.plane().is_same_or_flipped(plane) {
+        return None;
+    }
+    if w.bbox.min[axis] - at > eps {
+        Some(Split::Front)
+    } else if w.bbox.max[axis] - at < -eps {
+        Some(Split::Back)
+    } else {
+        None
+    }
 }
 
 /// True when a box reaches more than `eps` to both sides of an axis-aligned plane.

@@ -53,37 +53,23 @@ impl<'a> Surface<'a> {
     /// For each polygon of this surface and of `other`, whether its box comes within `margin`
     /// of a box of the other's polygons.
     ///
-    /// One walk of `other`'s hierarchy per leaf of this one (a handful of neighbouring
-    /// polygons), not per polygon: the leaf's box gathers the few polygons of `other` near any
-    /// of its items, and those pairs settle both sides' flags at once.
+    /// One descent of both hierarchies together ([`Bvh::visit_pairs_within`]), in parallel over
+    /// pieces of this one: walking `other`'s from its root once per leaf of this one entered
+    /// its top levels again for every leaf. Each pair of polygons found settles both sides'
+    /// flags at once.
     pub fn near_each_other(&self, other: &Surface, margin: f64) -> (Vec<bool>, Vec<bool>) {
         let mine: Vec<AtomicBool> = self.boxes.iter().map(|_| AtomicBool::new(false)).collect();
         let theirs: Vec<AtomicBool> = other.boxes.iter().map(|_| AtomicBool::new(false)).collect();
-        let leaves: Vec<(&Aabb, &[u32])> = self.bvh.leaves().collect();
-        leaves
-            .par_iter()
-            .with_min_len(64)
-            .for_each_init(Vec::new, |near, &(leaf, items)| {
-                near.clear();
-                other.bvh.visit(
-                    |b| b.overlaps(leaf, margin),
-                    |j| {
-                        if other.boxes[j as usize].overlaps(leaf, margin) {
-                            near.push(j);
-                        }
-                        false
-                    },
-                );
-                for &i in items {
-                    let b = &self.boxes[i as usize];
-                    for &j in near.iter() {
-                        if b.overlaps(&other.boxes[j as usize], margin) {
-                            mine[i as usize].store(true, Ordering::Relaxed);
-                            theirs[j as usize].store(true, Ordering::Relaxed);
-                        }
+        let pieces = self.bvh.cut(64);
+        pieces.par_iter().for_each(|&piece| {
+            self.bvh
+                .visit_pairs_within(piece, &other.bvh, margin, |i, j| {
+                    if self.boxes[i as usize].overlaps(&other.boxes[j as usize], margin) {
+                        mine[i as usize].store(true, Ordering::Relaxed);
+                        theirs[j as usize].store(true, Ordering::Relaxed);
                     }
-                }
-            });
+                });
+        });
         let plain =
             |flags: Vec<AtomicBool>| flags.into_iter().map(AtomicBool::into_inner).collect();
         (plain(mine), plain(theirs))
