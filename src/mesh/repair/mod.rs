@@ -141,7 +141,7 @@ fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (M
     if cracks.len() > WIDEN_CRACKS {
         return (mesh, passes);
     }
-    let mut best = Attempt::new(mesh, cracks.len());
+    let mut best = Attempt::new(mesh, cracks.len(), polygons, delta);
     {
         // First the flat fill at the first weld (see [`cracks`]): where the cracks are the rims
         // of flat loops (a flap at a corner where four planes meet to rounding), it closes the
@@ -155,7 +155,8 @@ fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (M
     }
     // Wider welds around the cracks. A wide weld can also flatten a feature thinner than its
     // reach (a wedge 10⁻¹⁰ thick between faces crossing at a tiny angle), so a pass without
-    // cracks still has to be a closed 2-manifold to be taken.
+    // cracks still has to be a closed 2-manifold, and its weld must sweep no more volume than
+    // the first weld explains, to be taken (see [`Attempt`]).
     let mut reach = delta;
     for _ in 0..WELD_RETRIES {
         if best.clean {
@@ -163,29 +164,30 @@ fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (M
         }
         reach *= 10.0;
         wide.widen(&cracks, reach);
-        let mesh;
-        (mesh, cracks) = repair(polygons, delta, &wide, false, false, None);
+        let (mesh, swept);
+        (mesh, cracks, swept) = measured_repair(polygons, delta, &wide, false, false, None);
         passes += 1;
-        best.consider(mesh, cracks.len());
+        best.consider(mesh, cracks.len(), swept);
         if best.clean || cracks.is_empty() {
             break;
         }
         // Only where the weld alone leaves cracks are edges allowed their drag (see
         // [`wide_drag`]): allowed always, it joined Havocglass8_left − _right's vertices to
         // edges they are not on, a flat shell where the weld alone closes the mesh.
-        let (mesh, left) = repair(polygons, delta, &wide, false, true, None);
+        let (mesh, left, swept) = measured_repair(polygons, delta, &wide, false, true, None);
         passes += 1;
-        best.consider(mesh, left.len());
+        best.consider(mesh, left.len(), swept);
         if best.clean {
             break;
         }
     }
     if !best.clean {
         // What no weld closes: slits between two cut lines of faces crossing at a tiny angle,
-        // filled flat on the pass before any widening (see [`cracks`]).
+        // filled flat on the pass before any widening (see [`cracks`]). Its weld is the first
+        // one: it sweeps nothing beyond it.
         let (mesh, left) = repair(polygons, delta, &Wide::default(), false, false, Some(reach));
         passes += 1;
-        best.consider(mesh, left.len());
+        best.consider(mesh, left.len(), 0.0);
     }
     let mut mesh = best.mesh;
     super::needles::remove_needles(&mut mesh, scale);
@@ -198,19 +200,50 @@ pub(crate) fn indexed_pass_closes(polygons: &[Polygon], eps: f64, index: &Indexe
     indexed::repair(polygons, index, WELD_TOLERANCES * eps).is_some_and(|(_, c)| c.is_empty())
 }
 
+/// How many first welds (`delta`) times the polygons' area a pass after the first may sweep
+/// (see [`swept_beyond`]): the first weld itself moves corners by up to `delta`.
+const SWEPT_WELDS: f64 = 4.0;
+
+/// The part of the polygons' volume a pass after the first may sweep besides: the volume a
+/// boolean is checked to (the `booleans` fuzz target's slack).
+const SWEPT_RELATIVE: f64 = 1e-9;
+
 /// The best repair pass so far: a closed 2-manifold if any, else the one with fewest cracks.
+///
+/// A pass with a wider weld is taken as clean only where the volume its weld sweeps
+/// ([`swept_beyond`]) is within what the first weld explains: [`SWEPT_WELDS`] × `delta` × the
+/// polygons' area, plus [`SWEPT_RELATIVE`] of their volume. A wider weld is for one point
+/// computed two ways a little apart, and sweeps next to nothing. Where it instead pulls the
+/// two sides of a real feature thinner than its reach onto each other, it sweeps the feature:
+/// a cube less itself turned 1e-6° about its diagonal is six wedges up to 1e-8 thick, which a
+/// weld 1.4e-7 wide flattened into flat shells, dropped: an empty mesh, "closed" (at 2e-6° and
+/// 3e-6°, 67 % and 33 % of the volume lost). Such a pass is passed over and the result stays
+/// open, for the caller to refuse. (The polygons' own volume is no measure: where the first
+/// pass leaves cracks it is 10–50 % off in those cases.)
 struct Attempt {
     mesh: Mesh,
     cracks: usize,
     clean: bool,
+    /// The most volume a pass's wider weld may sweep.
+    slack: f64,
 }
 
 impl Attempt {
-    fn new(mesh: Mesh, cracks: usize) -> Self {
+    fn new(mesh: Mesh, cracks: usize, polygons: &[Polygon], delta: f64) -> Self {
+        let mut bbox = crate::geom::Aabb::EMPTY;
+        for p in polygons {
+            for &v in p.vertices() {
+                bbox.grow(v);
+            }
+        }
+        let apex = bbox.center();
+        let volume = polygons.iter().map(|p| p.signed_volume6(apex)).sum::<f64>() / 6.0;
+        let area: f64 = polygons.iter().map(|p| p.area().abs()).sum();
         Attempt {
             mesh,
             cracks,
             clean: false,
+            slack: SWEPT_WELDS * delta * area + SWEPT_RELATIVE * volume.abs(),
         }
     }
 
@@ -218,27 +251,26 @@ impl Attempt {
     /// whatever its crack list says: the pairing can leave an edge's two half-edges without
     /// each other as twins where the fill made its edge crowded, and the fans still join them
     /// (a cube less itself turned 3e-6°: 8 crack points on a closed mesh of the exact volume,
-    /// passed over for a wider weld that flattened a wedge, 35 % of the volume).
+    /// passed over for a wider weld that flattened a wedge, 35 % of the volume). For the fill
+    /// at the first weld, which moves nothing.
     fn take_if_clean(&mut self, mesh: Mesh) {
         if !self.clean && mesh.report().is_closed_manifold() {
-            *self = Attempt {
-                mesh,
-                cracks: 0,
-                clean: true,
-            };
+            self.clean = true;
+            (self.mesh, self.cracks) = (mesh, 0);
         }
     }
 
-    fn consider(&mut self, mesh: Mesh, cracks: usize) {
+    /// Takes `mesh` if it is a closed 2-manifold whose weld swept no more than the slack, else
+    /// keeps it as the best open one if it has fewer cracks.
+    fn consider(&mut self, mesh: Mesh, cracks: usize, swept: f64) {
         if self.clean {
             return;
         }
         if cracks == 0 && mesh.report().is_closed_manifold() {
-            *self = Attempt {
-                mesh,
-                cracks,
-                clean: true,
-            };
+            if swept <= self.slack {
+                self.clean = true;
+                (self.mesh, self.cracks) = (mesh, cracks);
+            }
         } else if cracks < self.cracks {
             (self.mesh, self.cracks) = (mesh, cracks);
         }
@@ -258,6 +290,19 @@ fn repair(
     dragged: bool,
     fill_flat: Option<f64>,
 ) -> (Mesh, Vec<DVec3>) {
+    let (mesh, cracks, _) = measured_repair(polygons, delta, wide, quick, dragged, fill_flat);
+    (mesh, cracks)
+}
+
+/// [`repair`], and the volume its weld sweeps beyond `delta` (see [`swept_beyond`]).
+fn measured_repair(
+    polygons: &[Polygon],
+    delta: f64,
+    wide: &Wide,
+    quick: bool,
+    dragged: bool,
+    fill_flat: Option<f64>,
+) -> (Mesh, Vec<DVec3>, f64) {
     // Sized first: collecting a flat map grows the list by copying (10⁶ corners).
     let mut corners: Vec<DVec3> =
         Vec::with_capacity(polygons.iter().map(|p| p.vertices().len()).sum());
@@ -265,6 +310,7 @@ fn repair(
         corners.extend_from_slice(p.vertices());
     }
     let (positions, map) = weld_within(&corners, delta, wide);
+    let swept = swept_beyond(polygons, &corners, &positions, &map, delta);
     let drag = if dragged {
         wide_drag(&corners, &positions, &map, delta, wide)
     } else {
@@ -280,7 +326,41 @@ fn repair(
     }
     let (mut mesh, cracks) = shells::split_into_shells(positions, triangles);
     thin::drop_thin_shells(&mut mesh, delta, filled_from);
-    (mesh, cracks)
+    (mesh, cracks, swept)
+}
+
+/// The volume a weld sweeps by moving corners farther than `delta`, bounded from above: per
+/// polygon, its area times the largest such move across its plane.
+///
+/// A wider weld is for one point computed two ways: where faces cross at a tiny angle, the two
+/// computations differ along the line where they cross, which lies in every face at the point,
+/// so the move sweeps next to nothing. Pulling the two sides of a wedge thinner than the reach
+/// onto each other moves its corners across its faces: it sweeps the wedge.
+fn swept_beyond(
+    polygons: &[Polygon],
+    corners: &[DVec3],
+    positions: &[DVec3],
+    map: &[u32],
+    delta: f64,
+) -> f64 {
+    let mut swept = 0.0;
+    let mut at = 0;
+    for p in polygons {
+        let n = p.vertices().len();
+        let normal = p.plane().normal;
+        let mut most: f64 = 0.0;
+        for k in at..at + n {
+            let moved = positions[map[k] as usize] - corners[k];
+            if moved.length() > delta {
+                most = most.max(moved.dot(normal).abs());
+            }
+        }
+        at += n;
+        if most > 0.0 {
+            swept += most * p.area().abs();
+        }
+    }
+    swept
 }
 
 /// Per welded vertex, how far a wider weld than `delta` moved a corner onto it (0 where none
