@@ -410,3 +410,69 @@ fn union_of_a_slab_and_itself_turned_a_hair_loses_volume() {
         0x08, 0x0a, 0x08,
     ]);
 }
+
+/// Replays the committed input `tests/fuzz_findings/booleans/NAME.bin`.
+fn replay_file(name: &str) {
+    let path = format!(
+        "{}/tests/fuzz_findings/booleans/{name}.bin",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    replay(&std::fs::read(&path).unwrap_or_else(|e| panic!("{path}: {e}")));
+}
+
+// Found by fuzz11's 10.5-minute `booleans` run with tiny rotations on (main 4e5d819, 54,627
+// executions, 98 failing inputs, every one passing with tiny rotations off). Each below is one
+// of them, minimised by libFuzzer (`-minimize_crash=1`) where that kept the kind of failure: a
+// box — the crate's cuboid or the OBJ box alike unless said — turned 1e-10° or 1e-8° about a
+// skew axis, and an exact cube or slab on the 1/16 grid whose faces lie in the box's planes
+// before the turn. The faces a hair off coplanar are the open near-coplanar class (README,
+// Robustness): open here, with the kernel's treatment of planes 1e-12 rad apart.
+
+/// A 0.125 × 1 × 1.375 box turned 1e-10°, united with a 0.125 cube inside it whose two x faces
+/// lie in the box's: the union's volume is 0.1715495, 3.3·10⁻⁴ below the box alone (0.171875).
+#[test]
+#[ignore = "open: near-coplanar — a union below its larger operand after a 1e-10° turn"]
+fn union_with_a_cube_inside_a_box_turned_1e_10_degrees_loses_volume() {
+    replay_file("union_cube_in_box_turned_1e-10");
+}
+
+/// A box turned 1e-10° less a 0.125 cube that only touches one of its faces: the mesh has the
+/// box's volume (0.1875, right) but the solid's polygons sum to 0.1871338.
+#[test]
+#[ignore = "open: near-coplanar — the solid's volume 3.7e-4 off its mesh's after a 1e-10° turn"]
+fn difference_of_a_box_turned_1e_10_degrees_and_a_cube_on_its_face() {
+    replay_file("difference_cube_on_face_turned_1e-10");
+}
+
+/// A 1.375 × 0.875 × 1.125 box turned 1e-10° less a 0.125 cube at its corner: mesh volume
+/// 1.3535156 against the solid's 1.3526505.
+#[test]
+#[ignore = "open: near-coplanar — mesh and solid volumes 8.7e-4 apart after a 1e-10° turn"]
+fn difference_of_a_box_turned_1e_10_degrees_and_a_cube_at_its_corner() {
+    replay_file("difference_cube_at_corner_turned_1e-10");
+}
+
+/// A 1.375 × 0.5 × 1.375 box turned 1e-8° united with a 0.125 cube on its face: closed and
+/// manifold, but with needles.
+#[test]
+#[ignore = "open: near-coplanar — needles after a union with a box turned 1e-8°"]
+fn union_with_a_cube_on_a_box_turned_1e_8_degrees_leaves_needles() {
+    replay_file("union_cube_on_face_turned_1e-8");
+}
+
+/// An OBJ box (12 triangles) 0.5 × 1 × 0.375 turned 1e-10° less a 1.125 × 1.125 × 0.125 slab
+/// touching its bottom face: the difference's volume is 0.1972656, more than the box's 0.1875
+/// (the crate's own cuboid in its place passes).
+#[test]
+#[ignore = "open: near-coplanar — a difference larger than its first operand after a 1e-10° turn"]
+fn difference_of_an_obj_box_turned_1e_10_degrees_and_a_slab_grows() {
+    replay_file("difference_slab_under_box_turned_1e-10");
+}
+
+/// A box turned 1e-8° united with a bar sharing its bottom plane: 50 triangles, not a closed
+/// 2-manifold.
+#[test]
+#[ignore = "open: near-coplanar — an open union of a bar and a box turned 1e-8°"]
+fn union_of_a_bar_and_a_box_turned_1e_8_degrees_is_open() {
+    replay_file("union_bar_and_box_turned_1e-8");
+}

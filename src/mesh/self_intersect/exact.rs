@@ -32,6 +32,7 @@ fn pierces([p, q]: [DVec3; 2], [sp, sq]: [f64; 2], [a, b, c]: [DVec3; 3]) -> boo
 /// way and their interiors overlap. Triangles sharing one corner `v` meet on the line where
 /// their planes cross, from `v`; if both run along it into their interiors, the one that stops
 /// first stops on its far edge inside the other: that edge passes through it.
+#[inline]
 pub(super) fn cross(ti: [u32; 3], ui: [u32; 3], tc: [DVec3; 3], uc: [DVec3; 3]) -> bool {
     if ui.iter().filter(|i| ti.contains(i)).count() >= 2 {
         // Neighbours across an edge: their planes meet in that edge unless they are one plane.
