@@ -33,6 +33,8 @@ struct Arena<'a> {
     pieces: Vec<Polygon>,
     boxes: Vec<Aabb>,
     centroids: Vec<DVec3>,
+    /// Per piece, the index in `base` of the polygon it was cut from.
+    origins: Vec<u32>,
 }
 
 impl<'a> Arena<'a> {
@@ -50,6 +52,7 @@ impl<'a> Arena<'a> {
             pieces: Vec::with_capacity(room),
             boxes,
             centroids,
+            origins: Vec::with_capacity(room),
         }
     }
 
@@ -65,7 +68,17 @@ impl<'a> Arena<'a> {
         }
     }
 
-    fn push(&mut self, p: Polygon) -> u32 {
+    /// The index in `base` of the polygon `id` is or was cut from.
+    fn origin(&self, id: u32) -> u32 {
+        match (id as usize).checked_sub(self.base.len()) {
+            None => id,
+            Some(k) => self.origins[k],
+        }
+    }
+
+    /// Stores a piece cut from polygon `from`.
+    fn push(&mut self, p: Polygon, from: u32) -> u32 {
+        self.origins.push(self.origin(from));
         self.boxes.push(p.bbox());
         self.centroids.push(p.centroid());
         self.pieces.push(p);
@@ -112,6 +125,7 @@ impl Tree {
         let mut tree = Tree {
             nodes: Vec::with_capacity(polygons.len() / 2),
             polygons: Vec::with_capacity(polygons.len() / 2),
+            stub_polygons: Vec::new(),
             root: Link::Leaf(Label::Outside),
             eps,
         };
@@ -142,7 +156,20 @@ impl Tree {
                         .filter(|&i| boxes[i as usize].overlaps(&content, margin))
                         .collect();
                     if near.is_empty() {
-                        tree.nodes.push(Node::stub(content));
+                        let start = tree.stub_polygons.len();
+                        tree.stub_polygons
+                            .extend(ids.iter().map(|&i| arena.origin(i)));
+                        tree.stub_polygons[start..].sort_unstable();
+                        let mut end = start;
+                        for k in start..tree.stub_polygons.len() {
+                            if k == start || tree.stub_polygons[k] != tree.stub_polygons[end - 1] {
+                                tree.stub_polygons[end] = tree.stub_polygons[k];
+                                end += 1;
+                            }
+                        }
+                        tree.stub_polygons.truncate(end);
+                        tree.nodes
+                            .push(Node::stub(content, start as u32, end as u32));
                         tree.attach(slot, index);
                         continue;
                     }
@@ -226,8 +253,8 @@ impl Tree {
                 Split::Front => front.push(id),
                 Split::Back => back.push(id),
                 Split::Spanning { front: f, back: b } => {
-                    front.push(arena.push(f));
-                    back.push(arena.push(b));
+                    front.push(arena.push(f, id));
+                    back.push(arena.push(b, id));
                 }
             }
         }
@@ -248,7 +275,7 @@ impl Tree {
     /// Each node's content box grows by its children's; children come after their parents.
     fn fill_content(&mut self) {
         for i in (0..self.nodes.len()).rev() {
-            if matches!(self.nodes[i].kind, Kind::Stub) {
+            if matches!(self.nodes[i].kind, Kind::Stub { .. }) {
                 continue;
             }
             let (front, back) = (self.nodes[i].front, self.nodes[i].back);
@@ -275,10 +302,10 @@ impl Node {
         }
     }
 
-    fn stub(content: Aabb) -> Node {
+    fn stub(content: Aabb, start: u32, end: u32) -> Node {
         Node {
             plane: Plane::through(DVec3::ZERO, DVec3::X),
-            kind: Kind::Stub,
+            kind: Kind::Stub { start, end },
             front: Link::Leaf(Label::Outside),
             back: Link::Leaf(Label::Outside),
             content,
@@ -410,8 +437,8 @@ fn split_cell(ids: Vec<u32>, plane: &Plane, eps: f64, arena: &mut Arena) -> (Vec
             }
             Split::Coplanar => back.push(id),
             Split::Spanning { front: f, back: b } => {
-                front.push(arena.push(f));
-                back.push(arena.push(b));
+                front.push(arena.push(f, id));
+                back.push(arena.push(b, id));
             }
         }
     }

@@ -63,14 +63,15 @@ impl Tree {
             }
             return out;
         }
+        // One scratch per piece of work rayon splits off, not per chunk: the points labelled
+        // in unbuilt cells serve every later chunk it clips.
         let parts: Vec<Vec<Clipped>> = polygons
             .into_par_iter()
             .chunks(CHUNK)
-            .map(|chunk| {
+            .map_init(Scratch::default, |scratch, chunk| {
                 let mut out = Vec::with_capacity(chunk.len());
-                let mut scratch = Scratch::default();
                 for p in chunk {
-                    self.clip_one(p, keep, rule, surface, &mut scratch, &mut out);
+                    self.clip_one(p, keep, rule, surface, scratch, &mut out);
                 }
                 out
             })
@@ -126,7 +127,7 @@ impl Tree {
                 // near: only the cell's box came near, so classify whole rather than cut for
                 // nothing.
                 let whole = !w.bbox.overlaps(&node.content, margin)
-                    || matches!(node.kind, Kind::Stub)
+                    || matches!(node.kind, Kind::Stub { .. })
                     || (!is_face
                         && spans_axis_plane(&w.bbox, &node.plane, eps)
                         && !self.near_surface(w.link, &w.bbox, margin));
@@ -139,7 +140,13 @@ impl Tree {
                     }
                     break;
                 }
-                match w.polygon.split(&node.plane, eps) {
+                let split = if is_face {
+                    w.polygon.split(&node.plane, eps)
+                } else {
+                    cell_side(&w, &node.plane, eps)
+                        .unwrap_or_else(|| w.polygon.split(&node.plane, eps))
+                };
+                match split {
                     Split::Front => w.link = node.front,
                     Split::Back => w.link = node.back,
                     Split::Coplanar => {
@@ -181,28 +188,48 @@ impl Tree {
     /// in the tree, or where that ends in an unbuilt cell, from the centroid (moved off the
     /// surface it was routed along, if any): by the crossings between it and the last point
     /// labelled in that cell, or else in any cell, or failing that by a ray.
+    ///
+    /// Two points of one unbuilt cell both farther than [`CLEAR`] tolerances from every plane
+    /// on the way to it: the segment between them stays that far inside the cell (it is
+    /// convex), where only the pieces stored in the cell reach, so only the polygons they were
+    /// cut from can cross it (a piece elsewhere lies within a tolerance beyond a plane on the
+    /// way). Those few are tested instead of walking the surface's hierarchy.
     fn label_whole(
         &self,
         w: &Work,
         surface: &Surface,
-        labelled: &mut FxHashMap<u32, (DVec3, Label)>,
+        labelled: &mut FxHashMap<u32, (DVec3, Label, bool)>,
         last: &mut Option<(DVec3, Label)>,
     ) -> Label {
         let c = w.polygon.centroid();
         self.locate(w.link, c).unwrap_or_else(|stub| {
             let p = c + w.side * (2.0 * self.eps);
-            let label = labelled
-                .get(&stub)
-                .copied()
-                .or(*last)
-                .and_then(|known| surface.label_from(p, known))
-                .unwrap_or_else(|| surface.label(p));
-            labelled.insert(stub, (p, label));
+            // `c` is this far from every plane on its way, so `p` is `CLEAR` tolerances away.
+            let clear = self
+                .locate_stub(c)
+                .is_some_and(|(at, d)| at == stub && d > (CLEAR + 2.0) * self.eps);
+            let local = self.stub_polygons(stub);
+            let label = match labelled.get(&stub).copied() {
+                Some((q, l, true)) if clear && local.len() <= LOCAL_MAX => {
+                    surface.label_from_among(p, (q, l), local)
+                }
+                Some((q, l, _)) => surface.label_from(p, (q, l)),
+                None => last.and_then(|known| surface.label_from(p, known)),
+            }
+            .unwrap_or_else(|| surface.label(p));
+            labelled.insert(stub, (p, label, clear));
             *last = Some((p, label));
             label
         })
     }
 }
+
+/// How far, in tolerances, two points of an unbuilt cell must be from the planes on their way
+/// for the segment between them to be tested against the cell's own polygons only.
+const CLEAR: f64 = 4.0;
+/// Up to this many polygons in an unbuilt cell they are tested one by one; more, and the
+/// surface's hierarchy is walked.
+const LOCAL_MAX: usize = 64;
 
 /// Per thread of a clip: the work stack; per unbuilt cell the last point labelled in it (the
 /// cell is convex: a segment between two of its points meets only its few polygons), and the
@@ -211,8 +238,28 @@ impl Tree {
 #[derive(Default)]
 struct Scratch {
     stack: Vec<Work>,
-    labelled: FxHashMap<u32, (DVec3, Label)>,
+    labelled: FxHashMap<u32, (DVec3, Label, bool)>,
     last: Option<(DVec3, Label)>,
+}
+
+/// [`Polygon::split`]'s answer by a cell's axis-aligned plane for a fragment whose box lies
+/// wholly farther than `eps` to one side of it, from the box alone. The plane's distance is
+/// then `v[axis] - anchor[axis]` exactly (the normal's other components are zero) and the
+/// box's extreme is the extreme vertex, so this is `split`'s own test, bit for bit, without
+/// its loop over the vertices. `None` where the box does not settle it.
+fn cell_side(w: &Work, plane: &crate::geom::Plane, eps: f64) -> Option<Split> {
+    let axis = plane.normal.abs().max_position();
+    let at = plane.anchor[axis];
+    if w.polygon.plane().is_same_or_flipped(plane) {
+        return None;
+    }
+    if w.bbox.min[axis] - at > eps {
+        Some(Split::Front)
+    } else if w.bbox.max[axis] - at < -eps {
+        Some(Split::Back)
+    } else {
+        None
+    }
 }
 
 /// True when a box reaches more than `eps` to both sides of an axis-aligned plane.

@@ -52,8 +52,10 @@ pub(crate) enum Kind {
     /// The plane of the polygons `tree.polygons[start..end]`, all coplanar with it.
     Face { start: u32, end: u32 },
     /// A cell left unbuilt because nothing to be clipped can reach it (see
-    /// [`Tree::build_focused`]); `content` still bounds its polygons. Plane and links are unused.
-    Stub,
+    /// [`Tree::build_focused`]); `content` still bounds its polygons, and
+    /// `tree.stub_polygons[start..end]` lists the solid's polygons its pieces were cut from.
+    /// Plane and links are unused.
+    Stub { start: u32, end: u32 },
 }
 
 #[derive(Clone, Debug)]
@@ -74,6 +76,9 @@ pub(crate) struct Tree {
     pub nodes: Vec<Node>,
     /// The polygons of the face nodes, each node's in one contiguous run.
     pub polygons: Vec<Polygon>,
+    /// Per unbuilt cell, the indices (into the solid's polygons the tree was built from) of
+    /// the polygons with a piece in it, each cell's in one contiguous run.
+    pub stub_polygons: Vec<u32>,
     pub root: Link,
     pub eps: f64,
 }
@@ -89,7 +94,7 @@ impl Tree {
                 Link::Leaf(label) => return Ok(label),
                 Link::Node(i) => {
                     let node = &self.nodes[i as usize];
-                    if matches!(node.kind, Kind::Stub) {
+                    if matches!(node.kind, Kind::Stub { .. }) {
                         return Err(i);
                     }
                     link = if node.plane.distance(p) >= 0.0 {
@@ -102,6 +107,32 @@ impl Tree {
         }
     }
 
+    /// [`Tree::locate`] from the root, and how far `p` lies from the nearest plane on its way:
+    /// the unbuilt cell holding `p` and that clearance, or `None` where the walk ends in a
+    /// leaf. A point farther than the clearance from a point `q` lies in the same cell.
+    pub fn locate_stub(&self, p: glam::DVec3) -> Option<(u32, f64)> {
+        let mut link = self.root;
+        let mut clearance = f64::INFINITY;
+        loop {
+            let Link::Node(i) = link else { return None };
+            let node = &self.nodes[i as usize];
+            if matches!(node.kind, Kind::Stub { .. }) {
+                return Some((i, clearance));
+            }
+            let d = node.plane.distance(p);
+            clearance = clearance.min(d.abs());
+            link = if d >= 0.0 { node.front } else { node.back };
+        }
+    }
+
+    /// The polygons with a piece in an unbuilt cell (see [`Kind::Stub`]).
+    pub fn stub_polygons(&self, node: u32) -> &[u32] {
+        match self.nodes[node as usize].kind {
+            Kind::Stub { start, end } => &self.stub_polygons[start as usize..end as usize],
+            Kind::Cell | Kind::Face { .. } => &[],
+        }
+    }
+
     /// True when a polygon stored at or below `link` has a box within `margin` of `bbox`.
     pub fn near_surface(&self, link: Link, bbox: &Aabb, margin: f64) -> bool {
         let mut stack: smallvec::SmallVec<[Link; 32]> = smallvec::smallvec![link];
@@ -111,7 +142,7 @@ impl Tree {
             if !bbox.overlaps(&node.content, margin) {
                 continue;
             }
-            if matches!(node.kind, Kind::Stub) {
+            if matches!(node.kind, Kind::Stub { .. }) {
                 return true;
             }
             if bbox.overlaps(&node.own, margin)
@@ -132,7 +163,7 @@ impl Tree {
     pub fn face_polygons(&self, node: &Node) -> &[Polygon] {
         match node.kind {
             Kind::Face { start, end } => &self.polygons[start as usize..end as usize],
-            Kind::Cell | Kind::Stub => &[],
+            Kind::Cell | Kind::Stub { .. } => &[],
         }
     }
 
@@ -145,7 +176,7 @@ impl Tree {
             deepest = deepest.max(d);
             if let Link::Node(i) = link {
                 let n = &self.nodes[i as usize];
-                if matches!(n.kind, Kind::Stub) {
+                if matches!(n.kind, Kind::Stub { .. }) {
                     continue;
                 }
                 stack.push((n.front, d + 1));

@@ -53,37 +53,23 @@ impl<'a> Surface<'a> {
     /// For each polygon of this surface and of `other`, whether its box comes within `margin`
     /// of a box of the other's polygons.
     ///
-    /// One walk of `other`'s hierarchy per leaf of this one (a handful of neighbouring
-    /// polygons), not per polygon: the leaf's box gathers the few polygons of `other` near any
-    /// of its items, and those pairs settle both sides' flags at once.
+    /// One descent of both hierarchies together ([`Bvh::visit_pairs_within`]), in parallel over
+    /// pieces of this one: walking `other`'s from its root once per leaf of this one entered
+    /// its top levels again for every leaf. Each pair of polygons found settles both sides'
+    /// flags at once.
     pub fn near_each_other(&self, other: &Surface, margin: f64) -> (Vec<bool>, Vec<bool>) {
         let mine: Vec<AtomicBool> = self.boxes.iter().map(|_| AtomicBool::new(false)).collect();
         let theirs: Vec<AtomicBool> = other.boxes.iter().map(|_| AtomicBool::new(false)).collect();
-        let leaves: Vec<(&Aabb, &[u32])> = self.bvh.leaves().collect();
-        leaves
-            .par_iter()
-            .with_min_len(64)
-            .for_each_init(Vec::new, |near, &(leaf, items)| {
-                near.clear();
-                other.bvh.visit(
-                    |b| b.overlaps(leaf, margin),
-                    |j| {
-                        if other.boxes[j as usize].overlaps(leaf, margin) {
-                            near.push(j);
-                        }
-                        false
-                    },
-                );
-                for &i in items {
-                    let b = &self.boxes[i as usize];
-                    for &j in near.iter() {
-                        if b.overlaps(&other.boxes[j as usize], margin) {
-                            mine[i as usize].store(true, Ordering::Relaxed);
-                            theirs[j as usize].store(true, Ordering::Relaxed);
-                        }
+        let pieces = self.bvh.cut(64);
+        pieces.par_iter().for_each(|&piece| {
+            self.bvh
+                .visit_pairs_within(piece, &other.bvh, margin, |i, j| {
+                    if self.boxes[i as usize].overlaps(&other.boxes[j as usize], margin) {
+                        mine[i as usize].store(true, Ordering::Relaxed);
+                        theirs[j as usize].store(true, Ordering::Relaxed);
                     }
-                }
-            });
+                });
+        });
         let plain =
             |flags: Vec<AtomicBool>| flags.into_iter().map(AtomicBool::into_inner).collect();
         (plain(mine), plain(theirs))
@@ -122,7 +108,27 @@ impl<'a> Surface<'a> {
     /// every box on its way out of the model. `None` when the segment grazes an edge, runs in a
     /// polygon's plane or crosses a plane within the tolerance of either end (the caller casts
     /// a ray instead).
-    pub fn label_from(&self, p: DVec3, (q, q_label): (DVec3, Label)) -> Option<Label> {
+    pub fn label_from(&self, p: DVec3, known: (DVec3, Label)) -> Option<Label> {
+        self.segment_label(p, known, None)
+    }
+
+    /// [`Surface::label_from`] where only the polygons `among` (indices into this surface) can
+    /// meet the segment: each is tested in turn, without walking the hierarchy.
+    pub fn label_from_among(
+        &self,
+        p: DVec3,
+        known: (DVec3, Label),
+        among: &[u32],
+    ) -> Option<Label> {
+        self.segment_label(p, known, Some(among))
+    }
+
+    fn segment_label(
+        &self,
+        p: DVec3,
+        (q, q_label): (DVec3, Label),
+        among: Option<&[u32]>,
+    ) -> Option<Label> {
         let len = (q - p).length();
         if len <= self.eps {
             return None;
@@ -131,26 +137,35 @@ impl<'a> Surface<'a> {
         let inv = dir.recip();
         let mut crossings = 0u32;
         let mut grazed = false;
-        self.bvh.visit(
-            |b| b.ray_span(p, inv, len).is_some(),
-            |i| {
-                match crossing(&self.polygons[i as usize], p, dir, self.eps) {
-                    Crossing::Miss => {}
-                    Crossing::Hit(t) => {
-                        // Either end within the tolerance of the plane it crosses: as unsure as
-                        // a graze.
-                        let across = self.polygons[i as usize].plane().normal.dot(dir).abs();
-                        if t * across <= self.eps || (len - t).abs() * across <= self.eps {
-                            grazed = true;
-                        } else if t < len {
-                            crossings += 1;
-                        }
+        let mut test = |i: u32| {
+            match crossing(&self.polygons[i as usize], p, dir, self.eps) {
+                Crossing::Miss => {}
+                Crossing::Hit(t) => {
+                    // Either end within the tolerance of the plane it crosses: as unsure as
+                    // a graze.
+                    let across = self.polygons[i as usize].plane().normal.dot(dir).abs();
+                    if t * across <= self.eps || (len - t).abs() * across <= self.eps {
+                        grazed = true;
+                    } else if t < len {
+                        crossings += 1;
                     }
-                    Crossing::Graze => grazed = true,
                 }
-                grazed
-            },
-        );
+                Crossing::Graze => grazed = true,
+            }
+            grazed
+        };
+        match among {
+            None => self.bvh.visit(|b| b.ray_span(p, inv, len).is_some(), test),
+            Some(among) => {
+                for &i in among {
+                    // The same polygons the hierarchy's walk would test: those whose box the
+                    // segment meets.
+                    if self.boxes[i as usize].ray_span(p, inv, len).is_some() && test(i) {
+                        break;
+                    }
+                }
+            }
+        }
         if grazed {
             return None;
         }
@@ -264,5 +279,32 @@ mod tests {
             inside > 0 && carried > 2000,
             "{inside} inside, {carried} carried"
         );
+    }
+
+    /// Testing a segment against a list of polygons that holds every one it can meet agrees
+    /// with walking the hierarchy; a list missing the polygons it crosses does not.
+    #[test]
+    fn segments_among_listed_polygons() {
+        let t = Solid::torus(1.0, 0.3, 32, 16).unwrap();
+        let s = Surface::new(t.polygons(), 1e-9);
+        let all: Vec<u32> = (0..t.polygons().len() as u32).collect();
+        let (p, q) = (DVec3::new(1.0, 0.0, 0.01), DVec3::new(2.0, 0.013, 0.02));
+        let known = (q, s.label(q));
+        assert_eq!(known.1, Label::Outside);
+        assert_eq!(s.label_from(p, known), Some(Label::Inside));
+        assert_eq!(s.label_from_among(p, known, &all), Some(Label::Inside));
+        assert_eq!(s.label_from_among(p, known, &[]), Some(Label::Outside));
+        let mut agreed = 0;
+        for i in 0..60 {
+            let a = DVec3::new(-1.4 + 0.047 * i as f64, 0.31, 0.07 - 0.002 * i as f64);
+            let b = DVec3::new(1.3 - 0.041 * i as f64, -0.27, 0.05);
+            let known = (b, s.label(b));
+            if let Some(l) = s.label_from(a, known) {
+                assert_eq!(s.label_from_among(a, known, &all), Some(l), "{a} from {b}");
+                assert_eq!(l, s.label(a), "{a}");
+                agreed += 1;
+            }
+        }
+        assert!(agreed > 50, "{agreed} agreed");
     }
 }

@@ -114,6 +114,7 @@ impl Bvh {
     }
 
     /// The leaves: each one's box and its items.
+    #[cfg(test)]
     pub fn leaves(&self) -> impl Iterator<Item = (&Aabb, &[u32])> + '_ {
         self.nodes.iter().filter(|n| n.count > 0).map(|n| {
             let s = n.start_or_right as usize;
@@ -188,7 +189,18 @@ impl Bvh {
     /// above them. One descent of both trees together: querying `other` once per item of this
     /// one enters the top of `other` again for every query (on the T-junction search, ~130 nodes
     /// per query for ~11 items found).
-    pub fn visit_pairs(&self, from: u32, other: &Bvh, mut pair: impl FnMut(u32, u32)) {
+    pub fn visit_pairs(&self, from: u32, other: &Bvh, pair: impl FnMut(u32, u32)) {
+        self.visit_pairs_within(from, other, 0.0, pair);
+    }
+
+    /// [`Bvh::visit_pairs`] for leaves whose boxes come within `margin` of each other.
+    pub fn visit_pairs_within(
+        &self,
+        from: u32,
+        other: &Bvh,
+        margin: f64,
+        mut pair: impl FnMut(u32, u32),
+    ) {
         if self.nodes.is_empty() || other.nodes.is_empty() {
             return;
         }
@@ -200,7 +212,7 @@ impl Bvh {
         // Pairs go on the stack only once their boxes are known to overlap.
         if !self.nodes[from as usize]
             .bbox
-            .overlaps(&other.nodes[0].bbox, 0.0)
+            .overlaps(&other.nodes[0].bbox, margin)
         {
             return;
         }
@@ -225,13 +237,13 @@ impl Bvh {
             };
             if down_a {
                 for c in children(self, a) {
-                    if self.nodes[c as usize].bbox.overlaps(&nb.bbox, 0.0) {
+                    if self.nodes[c as usize].bbox.overlaps(&nb.bbox, margin) {
                         stack.push((c, b));
                     }
                 }
             } else {
                 for c in children(other, b) {
-                    if other.nodes[c as usize].bbox.overlaps(&na.bbox, 0.0) {
+                    if other.nodes[c as usize].bbox.overlaps(&na.bbox, margin) {
                         stack.push((a, c));
                     }
                 }
@@ -408,6 +420,24 @@ mod tests {
             overlapping.sort();
             assert_eq!(overlapping, want, "{count}");
         }
+        // Within a margin: every pair of boxes that close, once.
+        let margin = 0.004;
+        let mut near: Vec<(u32, u32)> = Vec::new();
+        for (i, e) in edges.iter().enumerate() {
+            for (j, p) in points.iter().enumerate() {
+                if e.overlaps(p, margin) {
+                    near.push((i as u32, j as u32));
+                }
+            }
+        }
+        assert!(near.len() > want.len(), "{} {}", near.len(), want.len());
+        let mut met = Vec::new();
+        for &piece in &eb.cut(64) {
+            eb.visit_pairs_within(piece, &pb, margin, |i, j| met.push((i, j)));
+        }
+        met.retain(|&(i, j)| edges[i as usize].overlaps(&points[j as usize], margin));
+        met.sort();
+        assert_eq!(met, near);
         // The order the items are visited in is a permutation of them.
         let mut order = pb.order().to_vec();
         order.sort();

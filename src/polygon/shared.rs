@@ -33,18 +33,24 @@ type Key = [[u64; 6]; 3];
 /// polygons come in.
 pub(crate) fn share_near_parallel_vertices(groups: &mut [&mut Vec<Polygon>], eps: f64) {
     let mut least: KeyedHashMap<Key, DVec3> = KeyedHashMap::default();
-    for p in groups.iter().flat_map(|g| g.iter()) {
-        for k in 0..p.vertices.len() {
-            if let Some(key) = key_of(p, k) {
-                let v = p.vertices[k];
-                least
-                    .entry(key)
-                    .and_modify(|w| {
-                        if lex_less(v, *w) {
-                            *w = v;
-                        }
-                    })
-                    .or_insert(v);
+    // The vertices that have a key, in order, so the second pass computes none again (the
+    // planes' sines were half of this pass on real models).
+    let mut keyed: Vec<(u32, u32, u32, Key)> = Vec::new();
+    for (g, group) in groups.iter().enumerate() {
+        for (i, p) in group.iter().enumerate() {
+            for k in 0..p.vertices.len() {
+                if let Some(key) = key_of(p, k) {
+                    let v = p.vertices[k];
+                    least
+                        .entry(key)
+                        .and_modify(|w| {
+                            if lex_less(v, *w) {
+                                *w = v;
+                            }
+                        })
+                        .or_insert(v);
+                    keyed.push((g as u32, i as u32, k as u32, key));
+                }
             }
         }
     }
@@ -52,16 +58,14 @@ pub(crate) fn share_near_parallel_vertices(groups: &mut [&mut Vec<Polygon>], eps
         return;
     }
     let reach = SHARE_REACH * eps;
-    for p in groups.iter_mut().flat_map(|g| g.iter_mut()) {
-        let n = p.vertices.len();
-        for k in 0..n {
-            let Some(key) = key_of(p, k) else { continue };
-            let Some(&w) = least.get(&key) else { continue };
-            let v = p.vertices[k];
-            let (prev, next) = (p.vertices[(k + n - 1) % n], p.vertices[(k + 1) % n]);
-            if w != v && w != prev && w != next && (w - v).length() <= reach {
-                p.vertices[k] = w;
-            }
+    for (g, i, k, key) in keyed {
+        let p = &mut groups[g as usize][i as usize];
+        let (n, k) = (p.vertices.len(), k as usize);
+        let Some(&w) = least.get(&key) else { continue };
+        let v = p.vertices[k];
+        let (prev, next) = (p.vertices[(k + n - 1) % n], p.vertices[(k + 1) % n]);
+        if w != v && w != prev && w != next && (w - v).length() <= reach {
+            p.vertices[k] = w;
         }
     }
 }
