@@ -231,7 +231,7 @@ const CLEAR: f64 = 4.0;
 /// surface's hierarchy is walked.
 const LOCAL_MAX: usize = 64;
 
-/// Per thread of a clip: the work stack; per unbuilt cell the last point labelled in it (the
+/// Per rayon job of a clip: the work stack; per unbuilt cell the last point labelled in it (the
 /// cell is convex: a segment between two of its points meets only its few polygons), and the
 /// last labelled anywhere (fragments in a row are neighbours, so a segment from it to a cell
 /// not seen yet is still short).

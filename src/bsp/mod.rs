@@ -109,7 +109,7 @@ impl Tree {
 
     /// [`Tree::locate`] from the root, and how far `p` lies from the nearest plane on its way:
     /// the unbuilt cell holding `p` and that clearance, or `None` where the walk ends in a
-    /// leaf. A point farther than the clearance from a point `q` lies in the same cell.
+    /// leaf. Any point nearer to `p` than the clearance lies in the same cell.
     pub fn locate_stub(&self, p: glam::DVec3) -> Option<(u32, f64)> {
         let mut link = self.root;
         let mut clearance = f64::INFINITY;

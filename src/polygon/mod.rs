@@ -199,6 +199,24 @@ impl Polygon {
     }
 }
 
+/// The bounding box of `polygons`' vertices.
+pub(crate) fn bbox_of(polygons: &[Polygon]) -> Aabb {
+    let mut b = Aabb::EMPTY;
+    for p in polygons {
+        for &v in p.vertices() {
+            b.grow(v);
+        }
+    }
+    b
+}
+
+/// The signed volume `polygons` bound, by the divergence theorem in f64, summed relative to
+/// their box's centre (what [`crate::Solid::volume`] gives, for polygons not yet a solid).
+pub(crate) fn volume_of(polygons: &[Polygon]) -> f64 {
+    let apex = bbox_of(polygons).center();
+    polygons.iter().map(|p| p.signed_volume6(apex)).sum::<f64>() / 6.0
+}
+
 /// Drops entries equal to their predecessor (cyclically).
 pub(crate) fn dedup_ring<A: smallvec::Array>(v: &mut SmallVec<A>)
 where

@@ -5,7 +5,7 @@ use glam::DVec3;
 use super::Solid;
 use crate::bsp::{Label, Tree};
 use crate::geom::Aabb;
-use crate::polygon::Polygon;
+use crate::polygon::{Polygon, bbox_of, volume_of};
 
 /// Where a point lies relative to a solid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -22,24 +22,13 @@ impl Solid {
     /// The bounding box.
     #[must_use]
     pub fn bbox(&self) -> Aabb {
-        let mut b = Aabb::EMPTY;
-        for p in &self.polygons {
-            for &v in p.vertices() {
-                b.grow(v);
-            }
-        }
-        b
+        bbox_of(&self.polygons)
     }
 
     /// Signed volume by the divergence theorem, in f64, summed relative to the box centre.
     #[must_use]
     pub fn volume(&self) -> f64 {
-        let apex = self.bbox().center();
-        self.polygons
-            .iter()
-            .map(|p| p.signed_volume6(apex))
-            .sum::<f64>()
-            / 6.0
+        volume_of(&self.polygons)
     }
 
     /// Total surface area.

@@ -165,7 +165,7 @@ fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (M
         reach *= 10.0;
         wide.widen(&cracks, reach);
         let (mesh, swept);
-        (mesh, cracks, swept) = measured_repair(polygons, delta, &wide, false, false, None);
+        (mesh, cracks, swept) = measured_repair(polygons, delta, &wide, false, false);
         passes += 1;
         best.consider(mesh, cracks.len(), swept);
         if best.clean || cracks.is_empty() {
@@ -174,7 +174,7 @@ fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (M
         // Only where the weld alone leaves cracks are edges allowed their drag (see
         // [`wide_drag`]): allowed always, it joined Havocglass8_left − _right's vertices to
         // edges they are not on, a flat shell where the weld alone closes the mesh.
-        let (mesh, left, swept) = measured_repair(polygons, delta, &wide, false, true, None);
+        let (mesh, left, swept) = measured_repair(polygons, delta, &wide, false, true);
         passes += 1;
         best.consider(mesh, left.len(), swept);
         if best.clean {
@@ -230,14 +230,7 @@ struct Attempt {
 
 impl Attempt {
     fn new(mesh: Mesh, cracks: usize, polygons: &[Polygon], delta: f64) -> Self {
-        let mut bbox = crate::geom::Aabb::EMPTY;
-        for p in polygons {
-            for &v in p.vertices() {
-                bbox.grow(v);
-            }
-        }
-        let apex = bbox.center();
-        let volume = polygons.iter().map(|p| p.signed_volume6(apex)).sum::<f64>() / 6.0;
+        let volume = crate::polygon::volume_of(polygons);
         let area: f64 = polygons.iter().map(|p| p.area().abs()).sum();
         Attempt {
             mesh,
@@ -290,18 +283,31 @@ fn repair(
     dragged: bool,
     fill_flat: Option<f64>,
 ) -> (Mesh, Vec<DVec3>) {
-    let (mesh, cracks, _) = measured_repair(polygons, delta, wide, quick, dragged, fill_flat);
+    let (mesh, cracks, _) = pass(polygons, delta, wide, quick, dragged, fill_flat, false);
     (mesh, cracks)
 }
 
-/// [`repair`], and the volume its weld sweeps beyond `delta` (see [`swept_beyond`]).
+/// [`repair`] without filling, and the volume its weld sweeps beyond `delta` (see
+/// [`swept_beyond`]).
 fn measured_repair(
     polygons: &[Polygon],
     delta: f64,
     wide: &Wide,
     quick: bool,
     dragged: bool,
+) -> (Mesh, Vec<DVec3>, f64) {
+    pass(polygons, delta, wide, quick, dragged, None, true)
+}
+
+/// [`repair`]; with `measure`, also the volume its weld sweeps beyond `delta` (else 0).
+fn pass(
+    polygons: &[Polygon],
+    delta: f64,
+    wide: &Wide,
+    quick: bool,
+    dragged: bool,
     fill_flat: Option<f64>,
+    measure: bool,
 ) -> (Mesh, Vec<DVec3>, f64) {
     // Sized first: collecting a flat map grows the list by copying (10⁶ corners).
     let mut corners: Vec<DVec3> =
@@ -310,7 +316,11 @@ fn measured_repair(
         corners.extend_from_slice(p.vertices());
     }
     let (positions, map) = weld_within(&corners, delta, wide);
-    let swept = swept_beyond(polygons, &corners, &positions, &map, delta);
+    let swept = if measure {
+        swept_beyond(polygons, &corners, &positions, &map, delta)
+    } else {
+        0.0
+    };
     let drag = if dragged {
         wide_drag(&corners, &positions, &map, delta, wide)
     } else {

@@ -20,11 +20,11 @@
 //! all of whose boxes overlap:
 //! - a vertex whose fan is checked embedded ([`fans`], linear in its valence) settles every
 //!   pair of triangles sharing it: none of them cross, and none is tested;
-//! - a point where vertices of valence over [`GROUP_VALENCE`] lie, several at one place or
+//! - a point where vertices of valence at least [`GROUP_VALENCE`] lie, several at one place or
 //!   one whose fan is not embedded, is settled by a sweep about it ([`hubs`], `O(n log n)`):
 //!   only pairs whose wedges overlap seen along one direction take the exact test;
 //! - a triangle's box takes part in the tree in the group of its corner of highest valence
-//!   (over [`GROUP_VALENCE`]) at a settled point, and a query passes over its own group's
+//!   (at least [`GROUP_VALENCE`]) at a settled point, and a query passes over its own group's
 //!   subtrees without entering them, and over another group's where the pairs between the two
 //!   are better found from that group's side ([`Fans::queries`]);
 //! - a thin triangle (a sliver of such a fan) is tested against the boxes the tree offers
