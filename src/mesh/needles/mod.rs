@@ -1,4 +1,4 @@
-//! Removing needles from a closed triangle mesh by edge flips and edge collapses.
+//! Removing needles from a closed triangle mesh by edge flips, collapses and vertex moves.
 //!
 //! A *needle* is a triangle whose area is below [`NEEDLE_AREA`] × d², d the diagonal of its
 //! shell's bounding box (see [`crate::geom::NEEDLE_AREA`] for why that threshold). Booleans
@@ -17,13 +17,25 @@
 //!   triangles beside it; where that would change the volume, `q` moves off its place along
 //!   the fan's normal by what puts it back (a collapse keeps the volume). The surface moves by
 //!   about `|pq|`. Taken when the needle has a short edge (a *spike* or a speck).
+//! * **Merge** a speck's three corners into one vertex where no single edge may collapse
+//!   (`merge.rs`): between flat slivers that share its edges, or on a vertex of valence three.
+//!   Its condition is on the region it replaces: a disk whose boundary is one simple cycle.
+//!   Keeps the volume as a collapse does.
 //! * **Stretch** a spike no flip or collapse can take (the tip of a thin wedge): one end of its
 //!   short edge moves away from the other along it, about the needle's height, until the
 //!   area is half again the threshold ([`Work::plan_stretch`]).
+//! * **Widen** a flat sliver that nothing else can take: its apex moves away from its long
+//!   edge in its fan's plane until the area is half again the threshold
+//!   ([`Work::plan_widen`]). The last resort, after every removal within the bound.
+//!
+//! Each needle first gets the operation that moves the surface least within twice its own
+//! thickness; where none applies, within the bound (`Work::fix`). A tetrahedral shell with a
+//! needle face that nothing removes is deleted whole: its volume is below `NEEDLE_AREA · d³/3`
+//! (`Work::drop_tetrahedron`).
 //!
 //! None is taken where it would change topology or fold the surface: a flip needs the new
 //! edge not to exist already; a collapse needs the link condition (the two ends share exactly
-//! the two opposite vertices as neighbours) and a shell of more than four triangles; both need
+//! the two opposite vertices as neighbours) and a shell of more than four triangles; all need
 //! every new triangle to keep its orientation and have more than zero area. A needle that no
 //! operation can remove stays (the report still counts it).
 
@@ -31,6 +43,7 @@ mod collapse;
 mod fix;
 mod flip;
 mod geometry;
+mod merge;
 mod stretch;
 mod work;
 
@@ -113,6 +126,8 @@ pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
         }
         if let Some(touched) = work.fix(t) {
             queue.extend(touched.into_iter().filter(|&u| work.is_needle(u)));
+        } else {
+            work.drop_tetrahedron(t);
         }
     }
     work.finish(mesh)
@@ -141,6 +156,8 @@ enum Op {
         t1: u32,
         t2: u32,
     },
+    /// The corners of triangle `t` into one vertex at `at`.
+    Merge { t: u32, at: DVec3 },
     /// Vertex `v` to `at`.
     Move { v: u32, at: DVec3 },
 }
