@@ -1,5 +1,6 @@
 //! Triangulation of planar regions: constrained Delaunay triangulation of a region's directed
-//! boundary edges, and ear clipping of simple polygons as the fallback.
+//! boundary edges (a monotone sweep where every edge runs along an axis, `rectilinear`), and
+//! ear clipping of simple polygons as the fallback.
 
 use glam::{DVec2, DVec3};
 use spade::handles::FixedVertexHandle;
@@ -8,6 +9,9 @@ use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 use smallvec::SmallVec;
 
 use crate::hash::FxHashMap;
+
+mod monotone;
+mod rectilinear;
 
 /// Triangulates the region of a plane lying to the left of its directed boundary `edges`
 /// (counter-clockwise outer loops, clockwise holes, seen from the front of `normal`), using only
@@ -42,6 +46,11 @@ pub(crate) fn triangulate_boundary(
     let vertices = spade_points(positions, &ids, normal)?;
     let constraint_list: Vec<[usize; 2]> =
         edges.iter().map(|&(a, b)| [local[&a], local[&b]]).collect();
+    // A region whose edges all run along the axes (a grid's faces) needs no Delaunay decision,
+    // and its cocircular corners would send nearly every one to exact arithmetic.
+    if let Some(tris) = rectilinear::triangulate(&vertices, &constraint_list) {
+        return Some(tris.into_iter().map(|t| t.map(|k| ids[k])).collect());
+    }
     if let Some(rings) = loops(vertices.len(), &constraint_list) {
         let centres: Vec<Option<Point2<f64>>> =
             rings.iter().map(|r| hole_centre(&vertices, r)).collect();

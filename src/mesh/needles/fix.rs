@@ -1,0 +1,113 @@
+//! Choosing, for one needle, the operation that removes it and moves the surface least.
+
+use super::geometry::area;
+use super::work::Work;
+use super::{Op, Plan};
+
+impl Work {
+    /// One operation on needle `t`, of those that apply the one that moves the surface least;
+    /// the triangles it changed, or `None` when none applies.
+    ///
+    /// First within twice the needle's own thickness (or the boolean's tolerance); where
+    /// nothing applies that close, within the shell's bound ([`super::SPECK_MOVE`] × d). A
+    /// needle where near-coplanar faces meet is often a spike whose short edge is far longer
+    /// than its thickness (6·10⁻⁹ beside a height of 10⁻¹²): collapsing that edge keeps the
+    /// volume and moves the surface by about its length, far inside the bound.
+    pub(super) fn fix(&mut self, t: u32) -> Option<Vec<u32>> {
+        let tri = self.tris[t as usize];
+        let shell = self.shell[tri[0] as usize] as usize;
+        let bound = self.max_move[shell];
+        let limit = bound.min((2.0 * self.height(t)).max(self.tolerance[shell]));
+        let best = match self.choose(t, limit) {
+            None if limit < bound => self.choose(t, bound),
+            best => best,
+        }
+        .or_else(|| self.widen(t, bound));
+        match best? {
+            Op::Move { v, at } => {
+                self.positions[v as usize] = at;
+                Some(self.around[v as usize].to_vec())
+            }
+            Op::Flip { t, u, new_t, new_u } => Some(self.apply_flip(t, u, new_t, new_u)),
+            Op::Collapse {
+                from,
+                to,
+                at,
+                t1,
+                t2,
+            } => Some(self.apply_collapse(from, to, at, t1, t2)),
+            Op::Merge { t, at } => Some(self.apply_merge(t, at)),
+        }
+    }
+
+    /// Widening needle `t` away from whichever of its edges moves the surface least, within
+    /// `bound` (see [`Work::plan_widen`]): where nothing else applies.
+    fn widen(&self, t: u32, bound: f64) -> Option<Op> {
+        (0..3)
+            .filter_map(|k| self.plan_widen(t, k))
+            .filter(|plan| plan.dev <= bound)
+            .min_by(|p, q| p.dev.total_cmp(&q.dev))
+            .map(|plan| plan.op)
+    }
+
+    /// Needle `t`'s thickness: its height over its longest edge.
+    fn height(&self, t: u32) -> f64 {
+        let c = self.corners(self.tris[t as usize]);
+        let longest = (0..3)
+            .map(|k| c[k].distance(c[(k + 1) % 3]))
+            .fold(0.0, f64::max);
+        2.0 * area(c) / longest.max(f64::MIN_POSITIVE)
+    }
+
+    /// The operation on needle `t` that moves the surface no farther than `limit`, of those
+    /// that apply (see [`Work::fix`]).
+    fn choose(&self, t: u32, limit: f64) -> Option<Op> {
+        let tri = self.tris[t as usize];
+        let c = self.corners(tri);
+        let len = [0, 1, 2].map(|k| c[k].distance(c[(k + 1) % 3]));
+        let longest = (0..3).max_by(|&i, &j| len[i].total_cmp(&len[j]))?;
+        let height = self.height(t);
+        // A needle with a short edge (a spike, or a speck) keeps that edge through any flip,
+        // and a short edge is what rounding to f32 on export collapses: it is collapsed if it
+        // can be. A cap (apex near the middle of the longest edge) is flipped if it can be.
+        let shortest = (0..3).min_by(|&i, &j| len[i].total_cmp(&len[j]))?;
+        let short_edge = len[shortest] <= 4.0 * height;
+        // Of the operations that move the surface no farther than `limit`, the one that sweeps
+        // the least volume: moving a corner of a large triangle off its plane sweeps much even
+        // when the distance is small.
+        let mut flips: Option<(f64, Op)> = None;
+        let mut collapses: Option<(f64, Op)> = None;
+        let consider = |best: &mut Option<(f64, Op)>, candidate: Option<Plan>| {
+            if let Some(Plan { dev, swept, op }) = candidate
+                && dev <= limit
+                && best.as_ref().is_none_or(|(v, _)| swept < *v)
+            {
+                *best = Some((swept, op));
+            }
+        };
+        consider(&mut flips, self.plan_flip(t, longest));
+        for k in 0..3 {
+            let (p, q) = (tri[k], tri[(k + 1) % 3]);
+            consider(&mut collapses, self.plan_collapse(t, p, q));
+            consider(&mut collapses, self.plan_collapse(t, q, p));
+        }
+        // Where no edge collapses and no flip applies (a speck between flat slivers, or on a
+        // vertex of valence three), the whole triangle may merge into one vertex.
+        let mut merges: Option<(f64, Op)> = None;
+        if collapses.is_none() && flips.is_none() {
+            consider(&mut merges, self.plan_merge(t));
+        }
+        let best = if short_edge {
+            let mut stretches: Option<(f64, Op)> = None;
+            if collapses.is_none() && flips.is_none() && merges.is_none() {
+                let (p, q) = (tri[shortest], tri[(shortest + 1) % 3]);
+                consider(&mut stretches, self.plan_stretch(t, p, q));
+                consider(&mut stretches, self.plan_stretch(t, q, p));
+            }
+            collapses.or(flips).or(merges).or(stretches)
+        } else {
+            flips.or(collapses).or(merges)
+        };
+        best.map(|(_, op)| op)
+    }
+}

@@ -1,0 +1,163 @@
+//! Removing needles from a closed triangle mesh by edge flips, collapses and vertex moves.
+//!
+//! A *needle* is a triangle whose area is below [`NEEDLE_AREA`] × d², d the diagonal of its
+//! shell's bounding box (see [`crate::geom::NEEDLE_AREA`] for why that threshold). Booleans
+//! make them where a vertex lies within the tolerance of a neighbour's edge (two planes meeting
+//! at a tiny angle, a weld cluster), and marching cubes where the surface passes within a hair
+//! of a grid vertex. Both are valid topology but useless geometry, and slicers, FEM meshers and
+//! manifold3d treat them as defects.
+//!
+//! Local operations remove them, each moving the surface by at most [`SPECK_MOVE`] × d:
+//!
+//! * **Flip** the needle's longest edge `ab` (apex `v`, neighbour `bac`) to `vc`. The new
+//!   triangles lie in the tetrahedron `abcv`, whose every point is within the apex height of
+//!   `abc`: the surface moves by at most that height. Taken when `v` is far from both ends of
+//!   `ab` (a *cap*).
+//! * **Collapse** the needle's shortest edge `pq`, moving `p` onto `q` and deleting the two
+//!   triangles beside it; where that would change the volume, `q` moves off its place along
+//!   the fan's normal by what puts it back (a collapse keeps the volume). The surface moves by
+//!   about `|pq|`. Taken when the needle has a short edge (a *spike* or a speck).
+//! * **Merge** a speck's three corners into one vertex where no single edge may collapse
+//!   (`merge.rs`): between flat slivers that share its edges, or on a vertex of valence three.
+//!   Its condition is on the region it replaces: a disk whose boundary is one simple cycle.
+//!   Keeps the volume as a collapse does.
+//! * **Stretch** a spike no flip or collapse can take (the tip of a thin wedge): one end of its
+//!   short edge moves away from the other along it, about the needle's height, until the
+//!   area is half again the threshold ([`Work::plan_stretch`]).
+//! * **Widen** a flat sliver that nothing else can take: its apex moves away from its long
+//!   edge in its fan's plane until the area is half again the threshold
+//!   ([`Work::plan_widen`]). The last resort, after every removal within the bound.
+//!
+//! Each needle first gets the operation that moves the surface least within twice its own
+//! thickness; where none applies, within the bound (`Work::fix`). A tetrahedral shell with a
+//! needle face that nothing removes is deleted whole: its volume is below `NEEDLE_AREA · d³/3`
+//! (`Work::drop_tetrahedron`).
+//!
+//! None is taken where it would change topology or fold the surface: a flip needs the new
+//! edge not to exist already; a collapse needs the link condition (the two ends share exactly
+//! the two opposite vertices as neighbours) and a shell of more than four triangles; all need
+//! every new triangle to keep its orientation and have more than zero area. A needle that no
+//! operation can remove stays (the report still counts it).
+
+mod collapse;
+mod fix;
+mod flip;
+mod geometry;
+mod merge;
+mod stretch;
+mod work;
+
+use glam::DVec3;
+
+use super::Mesh;
+use crate::geom::{Aabb, MAX_MOVE, NEEDLE_AREA};
+use geometry::twice_normal;
+use work::Work;
+
+/// The farthest, as a fraction of the shell's diagonal `d`, that removing one needle may move
+/// the surface. Collapsing a speck's shortest edge moves a vertex by up to that edge's length,
+/// and a triangle under `NEEDLE_AREA × d²` may have a shortest edge up to
+/// `√(4/√3 · NEEDLE_AREA) d ≈ 1.52·10⁻⁶ d` (an equilateral speck). [`MAX_MOVE`] alone
+/// (`√NEEDLE_AREA`) left a speck about 1.2·10⁻⁶ d on a side where a turned bar's face passes a
+/// hair from a box's corner, each way of removing it moving the surface 1.06·10⁻⁶ d. Twice
+/// `MAX_MOVE` covers every speck's shortest edge, with room for the volume-keeping offset.
+const SPECK_MOVE: f64 = 2.0 * MAX_MOVE;
+
+/// Removes the needles it can from `mesh`, keeping it closed and oriented. Returns how many
+/// needles (by the thresholds used here) remain; 0 also where the mesh is left alone: triangles
+/// that use an index out of range or a non-finite position (not a mesh this pass can reason
+/// about).
+///
+/// `scale`, where given, caps the diagonal the thresholds are taken from: a boolean passes 16
+/// times the size of the region where its operands met, so a part joined to a box 10³⁸ across
+/// keeps its triangles (by the box's diagonal, every one of them would be a needle).
+pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
+    let n = mesh.positions.len();
+    if mesh
+        .triangles
+        .iter()
+        .flatten()
+        .any(|&i| i as usize >= n || !mesh.positions[i as usize].is_finite())
+    {
+        return 0;
+    }
+    // Most meshes hold no needle. No shell's diagonal exceeds the whole mesh's, so one pass by
+    // the mesh's threshold proves that before the shells and the edge map are built.
+    let scale = scale.unwrap_or(f64::INFINITY);
+    let mut bbox = Aabb::EMPTY;
+    for &p in &mesh.positions {
+        bbox.grow(p);
+    }
+    let largest_threshold = NEEDLE_AREA * bbox.diagonal().min(scale).powi(2);
+    // Twice the area, squared, against twice the threshold, squared: no square root per
+    // triangle (this check is all the pass does on most meshes). Relaxed by a hair so rounding
+    // never skips a triangle the exact test below takes.
+    let bar = (2.0 * largest_threshold).powi(2) * (1.0 + 1e-9);
+    let corners = |t: &[u32; 3]| t.map(|i| mesh.positions[i as usize]);
+    if !mesh
+        .triangles
+        .iter()
+        .any(|t| twice_normal(corners(t)).length_squared() < bar)
+    {
+        return 0;
+    }
+    let mut work = Work::new(std::mem::take(mesh), scale);
+    let mut queue: Vec<u32> = (0..work.tris.len() as u32)
+        .filter(|&t| work.is_needle(t))
+        .collect();
+    if queue.is_empty() {
+        *mesh = Mesh {
+            positions: work.positions,
+            triangles: work.tris,
+            sources: work.sources,
+        };
+        return 0;
+    }
+    // Each operation removes a needle or makes one's smallest area larger; the budget only
+    // guards against cycling between equally bad choices.
+    let mut budget = 16 * queue.len() + 64;
+    while let Some(t) = queue.pop() {
+        if budget == 0 {
+            break;
+        }
+        budget -= 1;
+        if !work.alive[t as usize] || !work.is_needle(t) {
+            continue;
+        }
+        if let Some(touched) = work.fix(t) {
+            queue.extend(touched.into_iter().filter(|&u| work.is_needle(u)));
+        } else {
+            work.drop_tetrahedron(t);
+        }
+    }
+    work.finish(mesh)
+}
+
+/// A planned change: how far it moves the surface, the volume it sweeps, what it does.
+struct Plan {
+    dev: f64,
+    swept: f64,
+    op: Op,
+}
+
+/// A change to the mesh.
+enum Op {
+    Flip {
+        t: u32,
+        u: u32,
+        new_t: [u32; 3],
+        new_u: [u32; 3],
+    },
+    /// `from` onto `to`, which moves to `at`.
+    Collapse {
+        from: u32,
+        to: u32,
+        at: DVec3,
+        t1: u32,
+        t2: u32,
+    },
+    /// The corners of triangle `t` into one vertex at `at`.
+    Merge { t: u32, at: DVec3 },
+    /// Vertex `v` to `at`.
+    Move { v: u32, at: DVec3 },
+}
