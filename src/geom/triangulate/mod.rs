@@ -1,6 +1,6 @@
-//! Triangulation of planar regions: constrained Delaunay triangulation of a region's directed
-//! boundary edges (a monotone sweep where every edge runs along an axis, `rectilinear`), and
-//! ear clipping of simple polygons as the fallback.
+//! Triangulation of planar regions bounded by directed edges: ear clipping for one small loop, a
+//! sweep into monotone pieces (`sweep`), constrained Delaunay triangulation where the sweep
+//! declines, and ear clipping of simple polygons as the last resort.
 
 use glam::{DVec2, DVec3};
 use spade::handles::FixedVertexHandle;
@@ -11,14 +11,14 @@ use smallvec::SmallVec;
 use crate::hash::FxHashMap;
 
 mod monotone;
-mod rectilinear;
+mod sweep;
 
 /// Triangulates the region of a plane lying to the left of its directed boundary `edges`
 /// (counter-clockwise outer loops, clockwise holes, seen from the front of `normal`), using only
 /// the boundary's vertices. Triangles come back counter-clockwise as vertex indices.
 ///
-/// Constrained Delaunay triangulation never makes a zero-area triangle and needs no vertex
-/// beyond the boundary's. `None` when the boundary is not a valid region: edges that cross,
+/// Neither path makes a zero-area triangle or needs a vertex beyond the boundary's; the sweep
+/// makes no sliver and declines a region it would have to cut into one. `None` when the boundary is not a valid region: edges that cross,
 /// vertices that coincide in the plane, or a face that lies left of one edge and right of
 /// another.
 pub(crate) fn triangulate_boundary(
@@ -46,9 +46,9 @@ pub(crate) fn triangulate_boundary(
     let vertices = spade_points(positions, &ids, normal)?;
     let constraint_list: Vec<[usize; 2]> =
         edges.iter().map(|&(a, b)| [local[&a], local[&b]]).collect();
-    // A region whose edges all run along the axes (a grid's faces) needs no Delaunay decision,
-    // and its cocircular corners would send nearly every one to exact arithmetic.
-    if let Some(tris) = rectilinear::triangulate(&vertices, &constraint_list) {
+    // The sweep makes no Delaunay decision: cocircular corners (a grid's, a round hole's) send
+    // nearly every one to exact arithmetic, and nothing downstream needs the property.
+    if let Some(tris) = sweep::triangulate(&vertices, &constraint_list) {
         return Some(tris.into_iter().map(|t| t.map(|k| ids[k])).collect());
     }
     if let Some(rings) = loops(vertices.len(), &constraint_list) {

@@ -1,10 +1,10 @@
-//! The second half of the sweep triangulation (see `rectilinear`): the monotone pieces its
+//! The second half of the sweep triangulation (see `sweep`): the monotone pieces its
 //! diagonals cut a region into, their triangles, and the checks of the result.
 
 use smallvec::SmallVec;
 use spade::Point2;
 
-use super::rectilinear::{orient, same_way};
+use super::sweep::{orient, same_way};
 
 /// A triangle is a sliver when twice its area is at most this times its longest edge squared.
 /// A corner a rounding off a straight edge makes one (10⁻¹⁶ of a grid's); the thinnest triangle

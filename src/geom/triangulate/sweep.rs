@@ -1,37 +1,32 @@
-//! Triangulation of rectilinear regions (every boundary edge parallel to an axis of the
-//! projection) by a sweep into monotone pieces, making no Delaunay decisions.
+//! Triangulation of a region by a sweep into monotone pieces, making no Delaunay decision.
 //!
-//! Why: on a grid (a Menger sponge's faces, a boolean of boxes) nearly every four corners of a
-//! rectangle are cocircular, so a Delaunay triangulation settles nearly every in-circle test in
-//! exact arithmetic to the last stage of the adaptive predicate (a Menger sponge of depth 3:
-//! most of `to_mesh`). Nothing downstream needs the Delaunay property: the repair needs a
-//! triangulation of the region on its own vertices with no flat triangle, and triangles on a
-//! rectilinear region's corners are as fat as the region's features allow either way.
+//! Why: where a region's corners lie on a grid (a Menger sponge's faces, a boolean of boxes) or
+//! on circles (a face drilled with round holes), many four of them are cocircular, and a
+//! Delaunay triangulation settles each such in-circle test in exact arithmetic to the last
+//! stage of the adaptive predicate: most of `to_mesh` on a Menger sponge of depth 3 or a block
+//! less 100 cylinders. Nothing downstream needs the Delaunay property: the repair needs a
+//! triangulation of the region on its own corners with no flat triangle and no sliver, and the
+//! sweep makes no triangle thinner than [`super::monotone`]'s sliver bound (a region it would
+//! have to cut into one takes the Delaunay path).
 //!
-//! With every edge vertical or horizontal, the sweep needs no predicate to place an edge: a
-//! vertical edge's position along the sweep line is its x. Corner types and the monotone
-//! pieces' ears use the exact orientation test. The input is checked to be a valid region
+//! The sweep runs on the corners snapped to a fine grid; corner types, the sweep's status and
+//! the pieces' ears use the exact orientation test. The input is checked to be a valid region
 //! (simple loops that neither touch nor cross, one outer loop) and the output to be a
-//! triangulation of it (every triangle turning left, every boundary edge used once, every
-//! other edge once each way); anything else gives `None` and the caller takes the general path.
+//! triangulation of it (every triangle turning left and no sliver, every boundary edge used
+//! once, every other edge once each way), both on the corners as they are; anything else gives
+//! `None` and the caller takes the Delaunay path.
 
 use spade::Point2;
 
 use super::monotone::{covers, pieces, triangulate_monotone};
 
-/// An edge runs along an axis when it leaves it by at most this slope. Which regions take this
-/// path is a matter of triangle shape only: the sweep decides by exact predicates, so it is
-/// right for any boundary it accepts.
-const AXIS_SLOPE: f64 = 1e-9;
-
-/// The grid the sweep's corners are snapped to, for points scaled to at most 1 (2⁻³², above
-/// the drift [`AXIS_SLOPE`] allows across a region).
+/// The grid the sweep's corners are snapped to, for points scaled to at most 1: 2⁻³², far above
+/// the rounding that puts a grid's corners a few units off their rows.
 const SNAP: f64 = 1.0 / 4_294_967_296.0;
 
 /// The triangles (counter-clockwise, as local vertex indices) of the region left of the
-/// directed boundary edges `constraints` over `points`, when every edge is axis-parallel and
-/// the boundary is one counter-clockwise loop with clockwise holes inside it, no two loops
-/// touching. `None` otherwise, or where the checks of the result fail.
+/// directed boundary edges `constraints` over `points`, when the boundary is one
+/// counter-clockwise loop with clockwise holes inside it, no two loops touching. `None` otherwise, or where the checks of the result fail.
 pub(super) fn triangulate(
     points: &[Point2<f64>],
     constraints: &[[usize; 2]],
@@ -44,9 +39,7 @@ pub(super) fn triangulate(
     let mut prev = vec![usize::MAX; n];
     for &[a, b] in constraints {
         let (p, q) = (points[a], points[b]);
-        let (dx, dy) = ((q.x - p.x).abs(), (q.y - p.y).abs());
-        let along_axis = dx <= AXIS_SLOPE * dy || dy <= AXIS_SLOPE * dx;
-        if next[a] != usize::MAX || prev[b] != usize::MAX || !along_axis || p == q {
+        if next[a] != usize::MAX || prev[b] != usize::MAX || p == q {
             return None;
         }
         next[a] = b;
@@ -60,9 +53,9 @@ pub(super) fn triangulate(
         return None;
     }
     let expected = n + 2 * loops - 4;
-    // The sweep runs on the corners snapped to a grid, where the edges run exactly along the
-    // axes: corners a rounding off one row are then taken in order along it, and no diagonal
-    // runs a rounding away from a row's edges (a sliver). Everything else is decided on the
+    // The sweep runs on the corners snapped to a grid: where the edges run along the axes
+    // (to a rounding), corners a rounding off one row are then taken in order along it, and
+    // no diagonal runs a rounding away from a row's edges (a sliver). Everything else is decided on the
     // corners as they are, and checked there.
     let snapped: Vec<Point2<f64>> = points
         .iter()
@@ -413,18 +406,18 @@ mod tests {
         }
     }
 
-    /// What the sweep refuses, for the general path to decide: a slanted edge, a hole touching
-    /// the outer loop, crossing loops, two outer loops, a hole outside.
+    /// What the sweep refuses, for the Delaunay path to decide: a hole touching the outer loop,
+    /// crossing loops, two outer loops, a hole outside, a loop crossing itself.
     #[test]
     fn refusals() {
         let square = [(0.0, 0.0), (4.0, 0.0), (4.0, 4.0), (0.0, 4.0)];
-        let slanted = [(0.0, 0.0), (4.0, 1.0), (4.0, 4.0), (0.0, 4.0)];
+        let bowtie = [(0.0, 0.0), (4.0, 4.0), (4.0, 0.0), (0.0, 4.0)];
         let touching = [(0.0, 1.0), (0.0, 2.0), (1.0, 2.0), (1.0, 1.0)];
         let crossing = [(3.0, 1.0), (3.0, 2.0), (5.0, 2.0), (5.0, 1.0)];
         let outside = [(6.0, 1.0), (6.0, 2.0), (7.0, 2.0), (7.0, 1.0)];
         let second = [(6.0, 0.0), (7.0, 0.0), (7.0, 1.0), (6.0, 1.0)];
         for loops in [
-            &[&slanted[..]][..],
+            &[&bowtie[..]][..],
             &[&square, &touching],
             &[&square, &crossing],
             &[&square, &outside],
