@@ -182,11 +182,13 @@ fn flat_shells_holding_needles() {
 }
 
 /// The same run (artifact crash-de16203d…), minimised to 37 bytes: a box less a box turned by a
-/// tiny angle, then another step, leaves 2 shells with boundary edges at step 1 (volume
-/// 9.8e-4). Open: the two operands cut their nearly parallel facets on lines a rounding error
-/// over the angle apart (issue 11, near-coplanar part; see `Polygon::split`).
+/// tiny angle, then another step, left 2 shells with boundary edges at step 1 (volume
+/// 9.8e-4): the two operands cut their nearly parallel facets on lines a rounding error over
+/// the angle apart. Closed since a face within the tolerance of a nearly parallel plane is
+/// coplanar only within the band by the angle (`Polygon::split`) and edges whose neighbour is
+/// away from the other operand know its plane, so their cuts on the crossing line are `meet`s
+/// on the same line as the other operand's (`attach_edge_planes_among`).
 #[test]
-#[ignore = "open: boundary edges between facets crossing at a tiny angle"]
 fn boundary_edges_of_boxes_turned_a_hair() {
     replay(&[
         0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x46, 0x13, 0x00, 0x00, 0xe1,
@@ -212,9 +214,11 @@ fn needle_on_a_sliver_of_boxes_turned_a_hair() {
 /// was 0.035156250 where the solid's is 0.035481771 (0.9 % less), closed. The first repair pass
 /// leaves cracks and only a wide weld closed them, sweeping more volume than the first weld
 /// explains: that pass is no longer taken, and the result is left open (3 shells, boundary
-/// edges), so it is refused rather than silently 0.9 % off. Open: the polygons do not close.
+/// edges), so it was refused rather than silently 0.9 % off. The solid's own volume was wrong
+/// too: a 0.125 cube turned 1e-10° inside a 0.125 × 0.25 × 1.125 box sharing its x faces, the
+/// union is the box (0.03515625). Closed and exact since a face within the tolerance of a
+/// nearly parallel plane is coplanar only within the band by the angle (`Polygon::split`).
 #[test]
-#[ignore = "open: polygons that do not close after a tiny turn; refused (left open), was 0.9 % low"]
 fn mesh_volume_below_the_solids_after_a_tiny_turn() {
     replay(&[
         0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x37, 0x00, 0x00, 0x00,
@@ -433,29 +437,34 @@ fn replay_file(name: &str) {
 // of them, minimised by libFuzzer (`-minimize_crash=1`) where that kept the kind of failure: a
 // box — the crate's cuboid or the OBJ box alike unless said — turned 1e-10° or 1e-8° about a
 // skew axis, and an exact cube or slab on the 1/16 grid whose faces lie in the box's planes
-// before the turn. The faces a hair off coplanar are the open near-coplanar class (README,
-// Robustness): open here, with the kernel's treatment of planes 1e-12 rad apart.
+// before the turn. The faces a hair off coplanar were the near-coplanar class (README,
+// Robustness); five of these six now pass (see each), the needles of the sixth are open.
 
 /// A 0.125 × 1 × 1.375 box turned 1e-10°, united with a 0.125 cube inside it whose two x faces
-/// lie in the box's: the union's volume is 0.1715495, 3.3·10⁻⁴ below the box alone (0.171875).
+/// lie in the box's: the union's volume was 0.1715495, 3.3·10⁻⁴ below the box alone
+/// (0.171875). The cube's x faces lay within the tolerance of the box's, so they went whole to
+/// the coplanar side, while the box's faces, reaching beyond it, were cut on the crossing line:
+/// neither kept the part between. Then the two operands' points on that line lay 8e-7 apart
+/// (the box's interpolated along edges whose neighbours' planes were not known), a slit and a
+/// flat shell. Now exact, 12 triangles (`Polygon::split`, `attach_edge_planes_among`).
 #[test]
-#[ignore = "open: near-coplanar — a union below its larger operand after a 1e-10° turn"]
 fn union_with_a_cube_inside_a_box_turned_1e_10_degrees_loses_volume() {
     replay_file("union_cube_in_box_turned_1e-10");
 }
 
-/// A box turned 1e-10° less a 0.125 cube that only touches one of its faces: the mesh has the
-/// box's volume (0.1875, right) but the solid's polygons sum to 0.1871338.
+/// A box turned 1e-10° less a 0.125 cube that only touches one of its faces: the mesh had the
+/// box's volume (0.1875, right) but the solid's polygons summed to 0.1871338: the cube's top
+/// face, within the tolerance of the box's bottom plane, was dropped whole as coplanar, while
+/// the box's bottom face was cut on the crossing line and its part inside the cube dropped,
+/// a hole the repair filled. Now both are cut on that line (`Polygon::split`).
 #[test]
-#[ignore = "open: near-coplanar — the solid's volume 3.7e-4 off its mesh's after a 1e-10° turn"]
 fn difference_of_a_box_turned_1e_10_degrees_and_a_cube_on_its_face() {
     replay_file("difference_cube_on_face_turned_1e-10");
 }
 
-/// A 1.375 × 0.875 × 1.125 box turned 1e-10° less a 0.125 cube at its corner: mesh volume
-/// 1.3535156 against the solid's 1.3526505.
+/// A 1.375 × 0.875 × 1.125 box turned 1e-10° less a 0.125 cube at its corner: mesh volume was
+/// 1.3535156 against the solid's 1.3526505; both 1.353515625 now (`Polygon::split`).
 #[test]
-#[ignore = "open: near-coplanar — mesh and solid volumes 8.7e-4 apart after a 1e-10° turn"]
 fn difference_of_a_box_turned_1e_10_degrees_and_a_cube_at_its_corner() {
     replay_file("difference_cube_at_corner_turned_1e-10");
 }
@@ -469,18 +478,18 @@ fn union_with_a_cube_on_a_box_turned_1e_8_degrees_leaves_needles() {
 }
 
 /// An OBJ box (12 triangles) 0.5 × 1 × 0.375 turned 1e-10° less a 1.125 × 1.125 × 0.125 slab
-/// touching its bottom face: the difference's volume is 0.1972656, more than the box's 0.1875
-/// (the crate's own cuboid in its place passes).
+/// touching its bottom face: the difference's volume was 0.1972656, more than the box's 0.1875
+/// (the crate's own cuboid in its place passed); 0.1875 now (`Polygon::split`).
 #[test]
-#[ignore = "open: near-coplanar — a difference larger than its first operand after a 1e-10° turn"]
 fn difference_of_an_obj_box_turned_1e_10_degrees_and_a_slab_grows() {
     replay_file("difference_slab_under_box_turned_1e-10");
 }
 
 /// A box turned 1e-8° united with a bar sharing its bottom plane: 50 triangles, not a closed
-/// 2-manifold.
+/// 2-manifold (4 boundary edges). Closed since the box's cut points on the crossing line of the
+/// bottom faces are `meet`s on the same line as the bar's, its edges knowing the planes of
+/// neighbours away from the bar (`attach_edge_planes_among`).
 #[test]
-#[ignore = "open: near-coplanar — an open union of a bar and a box turned 1e-8°"]
 fn union_of_a_bar_and_a_box_turned_1e_8_degrees_is_open() {
     replay_file("union_bar_and_box_turned_1e-8");
 }

@@ -242,7 +242,8 @@ impl Tree {
                 Class::Back => Split::Back,
                 Class::FrontNear if !poly.nearly_parallel(&plane) => Split::Front,
                 Class::BackNear if !poly.nearly_parallel(&plane) => Split::Back,
-                Class::Coplanar => Split::Coplanar,
+                // Nearly parallel planes: coplanar only within the band `split` tells.
+                Class::Coplanar if poly.coplanar_within_eps(&plane) => Split::Coplanar,
                 _ => poly.split(&plane, eps),
             };
             match split {

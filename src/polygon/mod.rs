@@ -12,7 +12,7 @@ mod planes;
 mod shared;
 mod split;
 
-pub(crate) use planes::attach_edge_planes;
+pub(crate) use planes::attach_edge_planes_among;
 pub(crate) use shared::share_near_parallel_vertices;
 
 /// Vertex storage: quads and their split fragments stay inline.
@@ -230,7 +230,7 @@ where
 
 #[cfg(test)]
 mod tests {
-    use super::planes::meet;
+    use super::planes::{attach_edge_planes, meet};
     use super::split::edge_cut;
     use super::*;
 

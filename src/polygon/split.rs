@@ -11,9 +11,10 @@ use crate::geom::{Plane, Side};
 impl Polygon {
     /// Where the polygon lies relative to `plane`, vertices within `eps` counting as on it, and
     /// whether some vertex does. [`Polygon::split`] says the same without cutting where this
-    /// says `Coplanar`, and where it says `Front` or `Back` with no vertex near, or with one near
-    /// but `plane` not [`Polygon::nearly_parallel`] (the tests are `split`'s own): a tree build
-    /// that classified polygons to choose a splitter need not split those again.
+    /// says `Coplanar` and `plane` is the polygon's own or not [`Polygon::nearly_parallel`],
+    /// and where it says `Front` or `Back` with no vertex near, or with one near but `plane`
+    /// not nearly parallel (the tests are `split`'s own): a tree build that classified
+    /// polygons to choose a splitter need not split those again.
     pub(crate) fn side_near(&self, plane: &Plane, eps: f64) -> (Side, bool) {
         if self.plane.is_same_or_flipped(plane) {
             return (Side::Coplanar, true);
@@ -40,15 +41,32 @@ impl Polygon {
         self.plane.normal.cross(plane.normal).length() < ON_BAND_BELOW
     }
 
+    /// True when a polygon all of whose vertices lie within `eps` of `plane` is coplanar with
+    /// it for that alone: `plane` is its own, or crosses it at a sine of at least
+    /// [`ON_BAND_BELOW`] or below [`PARALLEL_BELOW`] (see [`Polygon::split`]).
+    pub(crate) fn coplanar_within_eps(&self, plane: &Plane) -> bool {
+        self.plane.is_same_or_flipped(plane)
+            || !banded(self.plane.normal.cross(plane.normal).length())
+    }
+
     /// Classifies against `plane` and, where the polygon spans it, cuts it in two. A polygon is
     /// coplanar with its own plane whatever its vertices say (see [`Plane::is_same_or_flipped`]),
-    /// and with any plane all its vertices lie within `eps` of.
+    /// and with any plane all its vertices lie on, as told below.
     ///
-    /// Otherwise, where the planes cross at a sine below 10⁻³ (`ON_BAND_BELOW`), a vertex counts
-    /// as on the plane within `eps` times the sine of the angle between them, not `eps`: where
-    /// they cross at a tiny angle α, `eps` would reach `eps / α` across the polygon, and the cut
-    /// would run through a vertex that far from the line where the planes cross while the other
-    /// operand, cut along that line, leaves a slit between (10⁻⁹° on a box: a band 0.6 wide).
+    /// Where the planes cross at a sine below 10⁻³ (`ON_BAND_BELOW`) and a vertex lies within
+    /// `eps`, a vertex counts as on the plane within `eps` times the sine of the angle between
+    /// them (or the plane's rounding noise), not `eps`: where they cross at a tiny angle α,
+    /// `eps` would reach `eps / α` across the polygon, and the cut would run through a vertex
+    /// that far from the line where the planes cross while the other operand, cut along that
+    /// line, leaves a slit between (10⁻⁹° on a box: a band 0.6 wide). So too for a polygon all
+    /// of whose vertices lie within `eps` of a plane crossing its own at a sine of at least
+    /// 10⁻¹⁴ (`PARALLEL_BELOW`; below it the planes are parallel but for rounding): it is
+    /// coplanar only if they all lie within the band.
+    /// Coplanar by `eps` alone, a small face (a 0.125 cube's, on a box turned 10⁻¹⁰°) went
+    /// whole to the coplanar side while the other operand's larger face, reaching beyond `eps`,
+    /// was cut on the crossing line through it: the two decisions disagreed, and the part of
+    /// the face between them was kept by neither (a hole: the solid 3.7·10⁻⁴ below its mesh) or by
+    /// both.
     /// Vertices on the plane go to both pieces. An edge from a front to a back vertex is cut at a point
     /// every polygon sharing the edge computes the same, bit for bit: interpolated, or where the
     /// edge runs nearly along the plane (and the interpolation is off by a rounding error over
@@ -69,14 +87,14 @@ impl Polygon {
             any_on |= d.abs() <= eps;
             dist.push(d);
         }
-        if !any_front && !any_back {
-            return Split::Coplanar;
-        }
         let sine = if any_on {
             self.plane.normal.cross(plane.normal).length()
         } else {
             1.0
         };
+        if !any_front && !any_back && !banded(sine) {
+            return Split::Coplanar;
+        }
         // Per vertex, how near the plane counts as on it: `eps`, or for nearly parallel planes
         // the band described above.
         let mut tight: SmallVec<[f64; 8]> = SmallVec::new();
@@ -94,6 +112,7 @@ impl Polygon {
         }
         let on = |i: usize| tight.get(i).copied().unwrap_or(eps);
         match (any_front, any_back) {
+            (false, false) => return Split::Coplanar,
             (true, false) => return Split::Front,
             (false, true) => return Split::Back,
             _ => {}
@@ -304,6 +323,21 @@ struct CutEdge<'a> {
 /// less than a factor of a thousand, and ordinary crossings keep the tolerance they always had.
 const ON_BAND_BELOW: f64 = 1e-3;
 
+/// Below this sine of the angle between a polygon's plane and a cutting plane, the two are
+/// parallel but for rounding (1e-14: they part by a hundredth of the default tolerance across
+/// the region it is relative to), and a polygon within `eps` of the plane is coplanar with it
+/// as for two exactly parallel planes, the same for every polygon on either (faces a
+/// tolerance apart, flush at a tolerance the caller asked for; translated copies). Between
+/// this and [`ON_BAND_BELOW`] it is coplanar only within the band by the angle.
+const PARALLEL_BELOW: f64 = 1e-14;
+
+/// Whether a polygon within `eps` of a plane crossing its own at `sine` is coplanar with it
+/// only within the band by the angle (see [`Polygon::split`]).
+#[inline]
+fn banded(sine: f64) -> bool {
+    (PARALLEL_BELOW..ON_BAND_BELOW).contains(&sine)
+}
+
 /// Below this sine of the angle between a polygon's plane and a cutting plane, the two cross
 /// "nearly in parallel": edges running along the plane are cut at the [`meet`] of their planes.
 ///
@@ -438,7 +472,11 @@ mod tests {
                             Side::Back => "Back",
                             Side::Spanning => continue,
                         };
-                        if side != Side::Coplanar && near && poly.nearly_parallel(&plane) {
+                        let sure = match side {
+                            Side::Coplanar => poly.coplanar_within_eps(&plane),
+                            _ => !near || !poly.nearly_parallel(&plane),
+                        };
+                        if !sure {
                             in_band += 1;
                             continue;
                         }

@@ -8,7 +8,7 @@ use super::{PrecisionLoss, Solid};
 use crate::bsp::{Coplanar, FOCUS_MARGIN, Label, Surface, Tree};
 use crate::geom::{Aabb, Plane, Tolerance};
 use crate::mesh::repair::WELD_TOLERANCES;
-use crate::polygon::{Polygon, Split, attach_edge_planes, share_near_parallel_vertices};
+use crate::polygon::{Polygon, Split, attach_edge_planes_among, share_near_parallel_vertices};
 
 /// A boolean operation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -236,7 +236,7 @@ fn cut_down(polys: Vec<Polygon>, other: &Aabb, eps: f64) -> (Vec<Polygon>, bool)
 }
 
 /// The polygons near the other surface, the ones clipped, each edge knowing its neighbour's
-/// plane where the neighbour is among them (see [`attach_edge_planes`]).
+/// plane where the operand has one, near or far (see [`attach_edge_planes_among`]).
 fn pick(polys: &[Polygon], near: &[bool]) -> Vec<Polygon> {
     let mut picked: Vec<Polygon> = polys
         .iter()
@@ -244,7 +244,8 @@ fn pick(polys: &[Polygon], near: &[bool]) -> Vec<Polygon> {
         .filter(|(_, n)| **n)
         .map(|(p, _)| p.clone())
         .collect();
-    attach_edge_planes(&mut picked);
+    let far = polys.iter().zip(near).filter(|(_, n)| !**n).map(|(p, _)| p);
+    attach_edge_planes_among(&mut picked, far);
     picked
 }
 
