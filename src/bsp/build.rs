@@ -156,18 +156,16 @@ impl Tree {
                         .filter(|&i| boxes[i as usize].overlaps(&content, margin))
                         .collect();
                     if near.is_empty() {
-                        let start = tree.stub_polygons.len();
-                        tree.stub_polygons
-                            .extend(ids.iter().map(|&i| arena.origin(i)));
-                        tree.stub_polygons[start..].sort_unstable();
-                        let mut end = start;
-                        for k in start..tree.stub_polygons.len() {
-                            if k == start || tree.stub_polygons[k] != tree.stub_polygons[end - 1] {
-                                tree.stub_polygons[end] = tree.stub_polygons[k];
-                                end += 1;
-                            }
+                        // The polygons the cell's pieces were cut from, each once.
+                        let mut origins = ids;
+                        for id in &mut origins {
+                            *id = arena.origin(*id);
                         }
-                        tree.stub_polygons.truncate(end);
+                        origins.sort_unstable();
+                        origins.dedup();
+                        let start = tree.stub_polygons.len();
+                        tree.stub_polygons.extend_from_slice(&origins);
+                        let end = tree.stub_polygons.len();
                         tree.nodes
                             .push(Node::stub(content, start as u32, end as u32));
                         tree.attach(slot, index);
