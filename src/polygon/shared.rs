@@ -61,7 +61,8 @@ pub(crate) fn share_near_parallel_vertices(groups: &mut [&mut Vec<Polygon>], eps
     for (g, i, k, key) in keyed {
         let p = &mut groups[g as usize][i as usize];
         let (n, k) = (p.vertices.len(), k as usize);
-        let Some(&w) = least.get(&key) else { continue };
+        // The first pass put every key in `keyed` into `least`.
+        let w = least[&key];
         let v = p.vertices[k];
         let (prev, next) = (p.vertices[(k + n - 1) % n], p.vertices[(k + 1) % n]);
         if w != v && w != prev && w != next && (w - v).length() <= reach {
