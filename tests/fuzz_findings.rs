@@ -534,3 +534,15 @@ fn union_with_a_box_turned_1e_11_degrees_exceeds_the_sum_of_its_operands() {
 fn needle_after_unions_with_a_cube_turned_1e_5_degrees() {
     replay_file("unions_with_cube_turned_1e-5_needle");
 }
+
+/// The one input of that run failing with tiny rotations off too (crash-e23bb76a…, so within
+/// reach of the bounded CI run), minimised to 54 bytes, with no tiny turn left: a bar united
+/// with a coarse sphere (3 segments), less a finer sphere (12 segments) of the same radius and
+/// centre, both turned 1.4° about axes 2e-3 rad apart, so facets meet about 5e-5 rad off
+/// coplanar. Step 1 leaves 9 shells, one of them flat. Passes with the two axes made equal:
+/// the near-coplanar kind reached through the free turn, as fuzz7's findings above.
+#[test]
+#[ignore = "open: near-coplanar — step 1: 9 shells, 1 closed shell of non-positive volume"]
+fn difference_of_spheres_turned_alike_about_close_axes_leaves_a_flat_shell() {
+    replay_file("difference_of_spheres_turned_alike_about_close_axes");
+}
