@@ -493,3 +493,56 @@ fn difference_of_an_obj_box_turned_1e_10_degrees_and_a_slab_grows() {
 fn union_of_a_bar_and_a_box_turned_1e_8_degrees_is_open() {
     replay_file("union_bar_and_box_turned_1e-8");
 }
+
+// Found by fuzz12's 10-minute `booleans` run with tiny rotations on (main 1e44668, libFuzzer
+// seed 0, `-fork=1 -ignore_crashes=1`): 149 failing inputs, all but one passing with tiny
+// rotations off, all the near-coplanar class (faces turned 1e-5° to 1e-11° meeting another's).
+// One input of each kind of failure, minimised keeping its kind; all open.
+
+/// A 0.125 cube turned 1e-7° about the (1, 1, 1) axis, united with the same cube unturned:
+/// 40 triangles, 2 shells, 4 boundary edges (volume 0.001953125, right). 65 of the 149 inputs
+/// were open like this, 34 more non-manifold or holding flat shells.
+#[test]
+#[ignore = "open: near-coplanar — not a closed 2-manifold, 4 boundary edges at step 0"]
+fn union_of_a_cube_and_itself_turned_1e_7_degrees_is_open() {
+    replay_file("union_cube_and_itself_turned_1e-7");
+}
+
+/// A 0.125 cube, united with a disjoint copy turned 1e-11°, then intersected with that copy
+/// unturned: the mesh has the cube's volume 0.001953125 (right), but the solid's polygons sum
+/// to 0.0013020833, two thirds of it. 30 of the 149 inputs were this kind.
+#[test]
+#[ignore = "open: near-coplanar — at step 1 mesh volume 0.001953125 but the solid's 0.0013021"]
+fn intersection_with_a_cube_turned_1e_11_degrees_loses_a_third_of_the_solid() {
+    replay_file("intersection_after_union_with_cube_turned_1e-11");
+}
+
+/// A 1.375 × 0.625 × 0.5 box turned 1e-11° united with a bar turned freely, then with a
+/// 0.5 × 0.125 × 0.125 bar: the second union's volume is 0.5453578, 7e-6 more than the sum of
+/// its operands (0.5453508). 17 of the 149 inputs had a volume out of the operation's bounds.
+#[test]
+#[ignore = "open: near-coplanar — step 1 volume 0.5453578 outside [0.5375383, 0.5453508] (op 0)"]
+fn union_with_a_box_turned_1e_11_degrees_exceeds_the_sum_of_its_operands() {
+    replay_file("union_box_turned_1e-11_bar_and_bar");
+}
+
+/// A coarse sphere united in turn with a cylinder, a 0.125 cube turned 1e-5°, a 3-sided prism
+/// and a 0.25 × 1.5 × 0.125 bar: step 3 is a closed 2-manifold (genus 0, 2 shells, volume
+/// 0.1485451) holding one needle. The one such input of the 149.
+#[test]
+#[ignore = "open: near-coplanar — closed 2-manifold with 1 needle at step 3"]
+fn needle_after_unions_with_a_cube_turned_1e_5_degrees() {
+    replay_file("unions_with_cube_turned_1e-5_needle");
+}
+
+/// The one input of that run failing with tiny rotations off too (crash-e23bb76a…, so within
+/// reach of the bounded CI run), minimised to 54 bytes, with no tiny turn left: a bar united
+/// with a coarse sphere (3 segments), less a finer sphere (12 segments) of the same radius and
+/// centre, both turned 1.4° about axes 2e-3 rad apart, so facets meet about 5e-5 rad off
+/// coplanar. Step 1 leaves 9 shells, one of them flat. Passes with the two axes made equal:
+/// the near-coplanar kind reached through the free turn, as fuzz7's findings above.
+#[test]
+#[ignore = "open: near-coplanar — step 1: 9 shells, 1 closed shell of non-positive volume"]
+fn difference_of_spheres_turned_alike_about_close_axes_leaves_a_flat_shell() {
+    replay_file("difference_of_spheres_turned_alike_about_close_axes");
+}
