@@ -11,10 +11,10 @@ use crate::geom::{Plane, Side};
 impl Polygon {
     /// Where the polygon lies relative to `plane`, vertices within `eps` counting as on it, and
     /// whether some vertex does. [`Polygon::split`] says the same without cutting where this
-    /// says `Coplanar` and `plane` is the polygon's own or not [`Polygon::nearly_parallel`],
-    /// and where it says `Front` or `Back` with no vertex near, or with one near but `plane`
-    /// not nearly parallel (the tests are `split`'s own): a tree build that classified
-    /// polygons to choose a splitter need not split those again.
+    /// says `Coplanar` and `plane` is the polygon's own or coplanar by `eps` alone (see
+    /// `coplanar_within_eps`), and where it says `Front` or `Back` with no vertex near, or with
+    /// one near but `plane` not [`Polygon::nearly_parallel`] (the tests are `split`'s own): a
+    /// tree build that classified polygons to choose a splitter need not split those again.
     pub(crate) fn side_near(&self, plane: &Plane, eps: f64) -> (Side, bool) {
         if self.plane.is_same_or_flipped(plane) {
             return (Side::Coplanar, true);
@@ -65,13 +65,14 @@ impl Polygon {
     /// Coplanar by `eps` alone, a small face (a 0.125 cube's, on a box turned 10⁻¹⁰°) went
     /// whole to the coplanar side while the other operand's larger face, reaching beyond `eps`,
     /// was cut on the crossing line through it: the two decisions disagreed, and the part of
-    /// the face between them was kept by neither (a hole: the solid 3.7·10⁻⁴ below its mesh) or by
-    /// both.
-    /// Vertices on the plane go to both pieces. An edge from a front to a back vertex is cut at a point
-    /// every polygon sharing the edge computes the same, bit for bit: interpolated, or where the
-    /// edge runs nearly along the plane (and the interpolation is off by a rounding error over
-    /// that angle), the `meet` of the planes the edge lies in and `plane`, which the other
-    /// operand computes the same way.
+    /// the face between them was kept by neither (a hole: the solid 3.7·10⁻⁴ below its mesh)
+    /// or by both.
+    ///
+    /// Vertices on the plane go to both pieces. An edge from a front to a back vertex is cut at
+    /// a point every polygon sharing the edge computes the same, bit for bit: interpolated, or
+    /// where the edge runs nearly along the plane (and the interpolation is off by a rounding
+    /// error over that angle), the `meet` of the planes the edge lies in and `plane`, which the
+    /// other operand computes the same way.
     #[must_use]
     pub fn split(&self, plane: &Plane, eps: f64) -> Split {
         if self.plane.is_same_or_flipped(plane) {

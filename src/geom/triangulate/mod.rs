@@ -17,10 +17,11 @@ mod sweep;
 /// (counter-clockwise outer loops, clockwise holes, seen from the front of `normal`), using only
 /// the boundary's vertices. Triangles come back counter-clockwise as vertex indices.
 ///
-/// Neither path makes a zero-area triangle or needs a vertex beyond the boundary's; the sweep
-/// makes no sliver and declines a region it would have to cut into one. `None` when the boundary is not a valid region: edges that cross,
-/// vertices that coincide in the plane, or a face that lies left of one edge and right of
-/// another.
+/// No path (small loops clipped by ears, the monotone sweep, constrained Delaunay) makes a
+/// zero-area triangle or needs a vertex beyond the boundary's; the sweep makes no sliver and
+/// declines a region it would have to cut into one. `None` when the boundary is not a valid
+/// region: edges that cross, vertices that coincide in the plane, or a face that lies left of
+/// one edge and right of another.
 pub(crate) fn triangulate_boundary(
     positions: &[DVec3],
     normal: DVec3,

@@ -26,7 +26,8 @@ const SNAP: f64 = 1.0 / 4_294_967_296.0;
 
 /// The triangles (counter-clockwise, as local vertex indices) of the region left of the
 /// directed boundary edges `constraints` over `points`, when the boundary is one
-/// counter-clockwise loop with clockwise holes inside it, no two loops touching. `None` otherwise, or where the checks of the result fail.
+/// counter-clockwise loop with clockwise holes inside it, no two loops touching. `None`
+/// otherwise, or where the checks of the result fail.
 pub(super) fn triangulate(
     points: &[Point2<f64>],
     constraints: &[[usize; 2]],
@@ -55,8 +56,8 @@ pub(super) fn triangulate(
     let expected = n + 2 * loops - 4;
     // The sweep runs on the corners snapped to a grid: where the edges run along the axes
     // (to a rounding), corners a rounding off one row are then taken in order along it, and
-    // no diagonal runs a rounding away from a row's edges (a sliver). Everything else is decided on the
-    // corners as they are, and checked there.
+    // no diagonal runs a rounding away from a row's edges (a sliver). Everything else is
+    // decided on the corners as they are, and checked there.
     let snapped: Vec<Point2<f64>> = points
         .iter()
         .map(|p| Point2::new(snap(p.x), snap(p.y)))
@@ -74,9 +75,10 @@ pub(super) fn triangulate(
     (tris.len() == expected && covers(&tris, &next)).then_some(tris)
 }
 
-/// `x` (at most 1 in magnitude) rounded to a multiple of [`SNAP`], exactly.
+/// `x` (at most 1 in magnitude) rounded to a multiple of [`SNAP`], exactly. `+ 0.0` turns a
+/// negative zero into zero: the sweep order sorts by `total_cmp`, which puts −0 before +0.
 fn snap(x: f64) -> f64 {
-    (x / SNAP).round() * SNAP
+    (x / SNAP).round() * SNAP + 0.0
 }
 
 /// The exact orientation of `a b c`: positive when they turn left.

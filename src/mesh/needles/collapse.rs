@@ -17,8 +17,8 @@ impl Work {
     /// some (the fan around `from` is not flat), it goes to the point off `to` along the merged
     /// fan's area-weighted normal that puts it back. Specks fanned over a face where a sphere
     /// grazes a box's corner cut volume at each collapse, all of one sign, whichever end was
-    /// kept (6.8·10⁻⁹ over eleven collapses); the offsets are at most 6·10⁻⁸ there. Where the fan around
-    /// `from` is flat, nothing moves off it.
+    /// kept (6.8·10⁻⁹ over eleven collapses); the offsets are at most 6·10⁻⁸ there. Where the
+    /// fan around `from` is flat, nothing moves off it.
     ///
     /// The move is measured both ways: how far the merged vertex lies from the plane of each
     /// triangle around either end as it was, and each old end from each triangle as it

@@ -41,9 +41,18 @@ impl Work {
     }
 
     /// Widening needle `t` away from whichever of its edges moves the surface least, within
-    /// `bound` (see [`Work::plan_widen`]): where nothing else applies.
+    /// `bound` (see [`Work::plan_widen`]): where nothing else applies. Edges are tried longest
+    /// first, so on a flat fan (every edge moves the surface by 0) the apex moves off the long
+    /// edge, by the least distance, not along the plane off a short one.
     fn widen(&self, t: u32, bound: f64) -> Option<Op> {
-        (0..3)
+        let c = self.corners(self.tris[t as usize]);
+        let mut edges = [0, 1, 2];
+        edges.sort_by(|&j, &k| {
+            let len = |k: usize| c[k].distance_squared(c[(k + 1) % 3]);
+            len(k).total_cmp(&len(j))
+        });
+        edges
+            .into_iter()
             .filter_map(|k| self.plan_widen(t, k))
             .filter(|plan| plan.dev <= bound)
             .min_by(|p, q| p.dev.total_cmp(&q.dev))

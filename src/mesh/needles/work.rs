@@ -110,8 +110,9 @@ impl Work {
 
     /// Deletes the shell of needle `t` where it is a tetrahedron (four triangles) and nothing
     /// else removed the needle. A tetrahedron with a face under the needle area `A·d²` holds
-    /// at most `A·d³/3` (its height is under the shell's diagonal): a spike 2·10⁻⁸ across and
-    /// 0.06 long, where a prism and a bar turned alike about close axes meet, holds 3.5·10⁻¹⁸.
+    /// at most `A·d²·D/3`, `D` the shell's own diagonal (its height is under `D`): a spike
+    /// 2·10⁻⁸ across and 0.06 long, where a prism and a bar turned alike about close axes
+    /// meet, holds 3.5·10⁻¹⁸.
     /// No flip, collapse or merge applies to a tetrahedron, and widening its base to the
     /// threshold would move a corner past the bound.
     pub(super) fn drop_tetrahedron(&mut self, t: u32) {
@@ -126,6 +127,18 @@ impl Work {
                     star.push(u);
                 }
             }
+        }
+        // Only a closed tetrahedron: repair may pass a mesh that still has cracks, where a
+        // four-triangle shell can be an open patch whose deletion would widen a hole.
+        let closed = star.len() == 4
+            && star.iter().all(|&u| {
+                let [a, b, c] = self.tris[u as usize];
+                [(a, b), (b, c), (c, a)]
+                    .iter()
+                    .all(|&(p, q)| self.with_edge(q, p).is_some())
+            });
+        if !closed {
+            return;
         }
         for u in star {
             self.unlink(u);
