@@ -24,14 +24,7 @@ impl Work {
     /// corners and the centroid moves the surface least.
     pub(super) fn plan_merge(&self, t: u32) -> Option<Plan> {
         let tri = self.tris[t as usize];
-        let mut star: SmallVec<[u32; 24]> = SmallVec::new();
-        for v in tri {
-            for &u in &self.around[v as usize] {
-                if !star.contains(&u) {
-                    star.push(u);
-                }
-            }
-        }
+        let star = self.star(tri);
         // The triangles that keep one corner, as (triangle, its corner); the link edges are
         // theirs opposite that corner. Those with two or three corners vanish.
         let mut kept: SmallVec<[(u32, u32); 24]> = SmallVec::new();
@@ -173,13 +166,7 @@ impl Work {
         for &(u, v) in kept {
             let old = self.tris[u as usize];
             let before = self.corners(old);
-            let after = old.map(|w| {
-                if w == v {
-                    at
-                } else {
-                    self.positions[w as usize]
-                }
-            });
+            let after = self.corners_moved(old, v, at);
             let needle = area(before) < self.threshold(old);
             let reference = if needle {
                 twice_normal(after)
@@ -205,14 +192,7 @@ impl Work {
     pub(super) fn apply_merge(&mut self, t: u32, at: DVec3) -> Vec<u32> {
         let tri = self.tris[t as usize];
         let keep = tri[0];
-        let mut star: SmallVec<[u32; 24]> = SmallVec::new();
-        for v in tri {
-            for &u in &self.around[v as usize] {
-                if !star.contains(&u) {
-                    star.push(u);
-                }
-            }
-        }
+        let star = self.star(tri);
         for &u in &star {
             self.unlink(u);
         }

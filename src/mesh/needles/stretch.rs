@@ -25,13 +25,7 @@ impl Work {
         for &u in &self.around[from as usize] {
             let old = self.tris[u as usize];
             let before = self.corners(old);
-            let after = old.map(|w| {
-                if w == from {
-                    at
-                } else {
-                    self.positions[w as usize]
-                }
-            });
+            let after = self.corners_moved(old, from, at);
             let was_needle = area(before) < self.threshold(old);
             if is_zero_area(after)
                 || twice_normal(after).dot(twice_normal(before)) <= 0.0
@@ -84,13 +78,7 @@ impl Work {
         for &u in &self.around[v as usize] {
             let old = self.tris[u as usize];
             let before = self.corners(old);
-            let after = old.map(|w| {
-                if w == v {
-                    at
-                } else {
-                    self.positions[w as usize]
-                }
-            });
+            let after = self.corners_moved(old, v, at);
             let was_needle = area(before) < self.threshold(old);
             let reference = if was_needle {
                 normal

@@ -93,6 +93,30 @@ impl Work {
         tri.map(|i| self.positions[i as usize])
     }
 
+    /// The corners of `tri` with its vertex `v` (if it has it) moved to `at`.
+    pub(super) fn corners_moved(&self, tri: [u32; 3], v: u32, at: DVec3) -> [DVec3; 3] {
+        tri.map(|w| {
+            if w == v {
+                at
+            } else {
+                self.positions[w as usize]
+            }
+        })
+    }
+
+    /// The live triangles with a corner at a corner of `tri`, each once.
+    pub(super) fn star(&self, tri: [u32; 3]) -> SmallVec<[u32; 24]> {
+        let mut star = SmallVec::new();
+        for v in tri {
+            for &u in &self.around[v as usize] {
+                if !star.contains(&u) {
+                    star.push(u);
+                }
+            }
+        }
+        star
+    }
+
     pub(super) fn threshold(&self, tri: [u32; 3]) -> f64 {
         self.needle_area[self.shell[tri[0] as usize] as usize]
     }
@@ -120,14 +144,7 @@ impl Work {
         if self.shell_tris[shell] != 4 {
             return;
         }
-        let mut star: SmallVec<[u32; 8]> = SmallVec::new();
-        for v in self.tris[t as usize] {
-            for &u in &self.around[v as usize] {
-                if !star.contains(&u) {
-                    star.push(u);
-                }
-            }
-        }
+        let star = self.star(self.tris[t as usize]);
         // Only a closed tetrahedron: repair may pass a mesh that still has cracks, where a
         // four-triangle shell can be an open patch whose deletion would widen a hole.
         let closed = star.len() == 4
