@@ -3,10 +3,9 @@
 use glam::DVec3;
 use smallvec::SmallVec;
 
-use super::geometry::{area, plane_distance, twice_normal};
+use super::geometry::twice_normal;
 use super::work::Work;
 use super::{Op, Plan};
-use crate::geom::is_zero_area;
 
 impl Work {
     /// Collapsing edge `from`–`to` of triangle `t` by moving `from` onto `to`: the move and the
@@ -86,24 +85,9 @@ impl Work {
             .chain(fan(to).map(|u| (u, target)))
         {
             let old = self.tris[u as usize];
-            let new = moved(old);
-            let (before, after) = (self.corners(old), corners(new));
-            // A needle's own plane is noise: then only flatness is checked.
-            let needle = area(before) < self.threshold(old);
-            let reference = if needle {
-                twice_normal(after)
-            } else {
-                twice_normal(before)
-            };
-            if is_zero_area(after) || twice_normal(after).dot(reference) <= 0.0 {
-                return None;
-            }
-            swept += (twice_normal(before).dot(at - end) / 6.0).abs();
-            if !needle {
-                dev = dev
-                    .max(plane_distance(before, at))
-                    .max(plane_distance(after, end));
-            }
+            let (d, s) = self.moved_corner(old, corners(moved(old)), end, at)?;
+            dev = dev.max(d);
+            swept += s;
         }
         Some(Plan {
             dev,

@@ -12,10 +12,8 @@
 use glam::DVec3;
 use smallvec::SmallVec;
 
-use super::geometry::{area, plane_distance, twice_normal};
 use super::work::Work;
 use super::{Op, Plan};
-use crate::geom::is_zero_area;
 
 impl Work {
     /// Merging the corners of triangle `t` into one vertex: the move and the operation, if the
@@ -165,24 +163,10 @@ impl Work {
         }
         for &(u, v) in kept {
             let old = self.tris[u as usize];
-            let before = self.corners(old);
             let after = self.corners_moved(old, v, at);
-            let needle = area(before) < self.threshold(old);
-            let reference = if needle {
-                twice_normal(after)
-            } else {
-                twice_normal(before)
-            };
-            if is_zero_area(after) || twice_normal(after).dot(reference) <= 0.0 {
-                return None;
-            }
-            let end = self.positions[v as usize];
-            swept += (twice_normal(before).dot(at - end) / 6.0).abs();
-            if !needle {
-                dev = dev
-                    .max(plane_distance(before, at))
-                    .max(plane_distance(after, end));
-            }
+            let (d, s) = self.moved_corner(old, after, self.positions[v as usize], at)?;
+            dev = dev.max(d);
+            swept += s;
         }
         Some((dev, swept))
     }

@@ -5,7 +5,7 @@ use glam::DVec3;
 use smallvec::SmallVec;
 
 use super::SPECK_MOVE;
-use super::geometry::{area, twice_normal};
+use super::geometry::{area, plane_distance, twice_normal};
 use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, NEEDLE_AREA, Tolerance, is_zero_area};
 use crate::mesh::Mesh;
@@ -130,6 +130,37 @@ impl Work {
     pub(super) fn acceptable(&self, tri: [u32; 3], normal: DVec3) -> bool {
         let c = self.corners(tri);
         !is_zero_area(c) && twice_normal(c).dot(normal) > 0.0
+    }
+
+    /// Triangle `old` with its corner at `end` moved to `at`, its corners becoming `after`:
+    /// `None` where it goes flat or folds over, else how far that moves the surface (the moved
+    /// corner from the old plane, the old corner from the new; nothing for a needle, whose own
+    /// plane is noise, so only flatness and orientation are checked against the new normal)
+    /// and the volume swept. Collapses and merges measure each triangle of the star this way.
+    pub(super) fn moved_corner(
+        &self,
+        old: [u32; 3],
+        after: [DVec3; 3],
+        end: DVec3,
+        at: DVec3,
+    ) -> Option<(f64, f64)> {
+        let before = self.corners(old);
+        let needle = area(before) < self.threshold(old);
+        let reference = if needle {
+            twice_normal(after)
+        } else {
+            twice_normal(before)
+        };
+        if is_zero_area(after) || twice_normal(after).dot(reference) <= 0.0 {
+            return None;
+        }
+        let swept = (twice_normal(before).dot(at - end) / 6.0).abs();
+        let dev = if needle {
+            0.0
+        } else {
+            plane_distance(before, at).max(plane_distance(after, end))
+        };
+        Some((dev, swept))
     }
 
     /// Deletes the shell of needle `t` where it is a tetrahedron (four triangles) and nothing
