@@ -10,10 +10,38 @@ mod common;
 use std::ffi::OsStr;
 use std::fmt::Write as _;
 use std::fs;
+use std::path::{Path, PathBuf};
 
-use bspcsg::{Solid, read_mesh};
-use common::box_obj_text;
-use common::run::{Scratch, bspcsg, refused};
+use bspcsg::{Mesh, Solid, read_mesh};
+use common::run::{Scratch, bspcsg, bspcsg_to, refused};
+use common::{assert_closed_manifold, box_obj_text};
+
+/// Writes `text` to `name` in `dir` and reads it back, asserting a closed 2-manifold: the
+/// file's path and its mesh.
+fn write_closed(dir: &Scratch, name: &str, text: &str) -> (PathBuf, Mesh) {
+    let path = dir.path(name);
+    fs::write(&path, text).unwrap();
+    let mesh = read_mesh(&path).unwrap();
+    assert_closed_manifold(&mesh, name);
+    (path, mesh)
+}
+
+/// The unit box from (3, 3, 3) written to `box.obj` in `dir`: the other operand of the CLI
+/// booleans here, apart from every crowded input.
+fn unit_box(dir: &Scratch) -> PathBuf {
+    let path = dir.path("box.obj");
+    fs::write(&path, box_obj_text([3.0; 3], [4.0; 3])).unwrap();
+    path
+}
+
+/// The volume of what `bspcsg union FLAGS a b -o out` writes (the run must succeed).
+fn union_volume(flags: &[&str], a: &Path, b: &Path, out: &Path) -> f64 {
+    let mut args: Vec<&OsStr> = vec!["union".as_ref()];
+    args.extend(flags.iter().map(OsStr::new));
+    args.extend([a.as_os_str(), b.as_os_str()]);
+    bspcsg_to(&args, out).ok();
+    read_mesh(out).unwrap().volume()
+}
 
 /// The volume of the pyramid over the regular `n`-gon of unit radius, height 1.
 fn cone_volume(n: usize) -> f64 {
@@ -71,11 +99,12 @@ fn folded_cone_obj(n: usize) -> String {
 fn cones_touching_apex_to_apex_read_as_a_solid() {
     let dir = Scratch::new("hourglass");
     for pinched in [false, true] {
-        let path = dir.path("hourglass.obj");
-        fs::write(&path, hourglass_obj(20_000, pinched)).unwrap();
-        let mesh = read_mesh(&path).unwrap();
-        let report = mesh.report();
-        assert!(report.is_closed_manifold(), "{pinched}: {report}");
+        let name = if pinched {
+            "pinched.obj"
+        } else {
+            "hourglass.obj"
+        };
+        let (_, mesh) = write_closed(&dir, name, &hourglass_obj(20_000, pinched));
         assert!(
             mesh.crossing_triangle_pairs().unwrap().is_empty(),
             "{pinched}"
@@ -86,18 +115,7 @@ fn cones_touching_apex_to_apex_read_as_a_solid() {
     }
     let path = dir.path("small.obj");
     fs::write(&path, hourglass_obj(2_000, false)).unwrap();
-    let other = dir.path("box.obj");
-    fs::write(&other, box_obj_text([3.0; 3], [4.0; 3])).unwrap();
-    let out = dir.path("out.obj");
-    let args = [
-        "union".as_ref(),
-        path.as_os_str(),
-        other.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-    ];
-    bspcsg(args).ok();
-    let volume = read_mesh(&out).unwrap().volume();
+    let volume = union_volume(&[], &path, &unit_box(&dir), &dir.path("out.obj"));
     assert!(
         (volume - (2.0 * cone_volume(2_000) + 1.0)).abs() < 1e-9,
         "{volume}"
@@ -117,14 +135,10 @@ fn cones_touching_apex_to_apex_read_as_a_solid() {
 #[test]
 fn a_folded_fan_of_many_triangles_is_found_crossing() {
     let dir = Scratch::new("folded");
-    let path = dir.path("folded.obj");
-    fs::write(&path, folded_cone_obj(20_000)).unwrap();
-    let mesh = read_mesh(&path).unwrap();
-    assert!(mesh.report().is_closed_manifold(), "{}", mesh.report());
+    let (path, mesh) = write_closed(&dir, "folded.obj", &folded_cone_obj(20_000));
     let pairs = mesh.crossing_triangle_pairs().unwrap();
     assert!(!pairs.is_empty() && pairs.len() < 10, "{pairs:?}");
-    let other = dir.path("box.obj");
-    fs::write(&other, box_obj_text([3.0; 3], [4.0; 3])).unwrap();
+    let other = unit_box(&dir);
     let out = dir.path("out.obj");
     let args: [&OsStr; 3] = ["union".as_ref(), path.as_os_str(), other.as_os_str()];
     refused(&args, &out, 2, &["folded.obj", "self-intersecting"]);
@@ -162,11 +176,8 @@ fn lobed_cone_obj(n: usize) -> (String, f64) {
 #[test]
 fn a_cone_over_a_lobed_base_reads_as_a_solid() {
     let dir = Scratch::new("lobed");
-    let path = dir.path("lobed.obj");
     let (text, area) = lobed_cone_obj(20_000);
-    fs::write(&path, text).unwrap();
-    let mesh = read_mesh(&path).unwrap();
-    assert!(mesh.report().is_closed_manifold(), "{}", mesh.report());
+    let (_, mesh) = write_closed(&dir, "lobed.obj", &text);
     assert!(mesh.crossing_triangle_pairs().unwrap().is_empty());
     let volume = Solid::from_mesh(&mesh).unwrap().volume();
     assert!((volume - area * 0.2 / 3.0).abs() < 1e-12, "{volume}");
@@ -205,10 +216,7 @@ fn stacked_slivers_obj(n: usize) -> String {
 #[test]
 fn stacked_slivers_stop_the_crossing_check_at_its_budget() {
     let dir = Scratch::new("slivers");
-    let path = dir.path("slivers.obj");
-    fs::write(&path, stacked_slivers_obj(5_000)).unwrap();
-    let mesh = read_mesh(&path).unwrap();
-    assert!(mesh.report().is_closed_manifold(), "{}", mesh.report());
+    let (path, mesh) = write_closed(&dir, "slivers.obj", &stacked_slivers_obj(5_000));
     let err = mesh.crossing_triangle_pairs().unwrap_err();
     assert!(
         matches!(
@@ -219,8 +227,7 @@ fn stacked_slivers_stop_the_crossing_check_at_its_budget() {
         "{err}"
     );
     let out = dir.path("out.obj");
-    let other = dir.path("box.obj");
-    fs::write(&other, box_obj_text([3.0; 3], [4.0; 3])).unwrap();
+    let other = unit_box(&dir);
     let args: [&OsStr; 3] = ["union".as_ref(), path.as_os_str(), other.as_os_str()];
     let needles = [
         "slivers.obj",
@@ -241,16 +248,7 @@ fn stacked_slivers_stop_the_crossing_check_at_its_budget() {
         "{}",
         info.stdout
     );
-    let args = [
-        "union".as_ref(),
-        "--allow-open".as_ref(),
-        path.as_os_str(),
-        other.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-    ];
-    bspcsg(args).ok();
-    let volume = read_mesh(&out).unwrap().volume();
+    let volume = union_volume(&["--allow-open"], &path, &other, &out);
     let slivers = mesh.volume();
     assert!(slivers > 0.0);
     assert!((volume - (slivers + 1.0)).abs() < 1e-9, "{volume}");
