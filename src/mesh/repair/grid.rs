@@ -103,7 +103,11 @@ impl<'p> Grid<'p> {
         // Pieces a cell long (shorter ones cost more in cells than they save in points); a cell
         // met again by the next piece is skipped.
         let pieces = (PIECES_PER_CELL * len / self.cell).ceil().max(1.0);
-        if pieces > MOST_PIECES || !pieces.is_finite() {
+        // The pieces' ends are computed, so each piece's box is padded by their rounding.
+        let pad = grow + 1e-12 * (len + a.abs().max_element() + b.abs().max_element());
+        // A reach wider than half a cell (a wide weld's, among small edges) would make each
+        // piece ask many cells: the tree instead.
+        if pieces > MOST_PIECES || !pieces.is_finite() || !(2.0 * pad <= self.cell) {
             let tree = self.tree.get_or_init(|| {
                 let boxes: Vec<Aabb> = self.spots.iter().map(|&p| Aabb::new(p, p)).collect();
                 Bvh::build(&boxes)
@@ -119,8 +123,6 @@ impl<'p> Grid<'p> {
             return;
         }
         let n = pieces as usize;
-        // The pieces' ends are computed, so each piece's box is padded by their rounding.
-        let pad = grow + 1e-12 * (len + a.abs().max_element() + b.abs().max_element());
         let mut from = a;
         let mut seen: smallvec::SmallVec<[u64; 16]> = smallvec::SmallVec::new();
         for k in 0..n {
@@ -162,8 +164,8 @@ mod tests {
 
     use super::Grid;
 
-    /// Every point within reach of a segment is handed over, long segments (the tree) and
-    /// short ones (the cells) alike, for points spread over a few scales.
+    /// Every point within reach of a segment is handed over, by the cells (short segments, a
+    /// small reach) and by the tree (long segments, or a reach wider than half a cell).
     #[test]
     fn hands_over_every_point_near_a_segment() {
         let mut spots = Vec::new();
@@ -181,7 +183,7 @@ mod tests {
         for _ in 0..200 {
             let a = DVec3::new(next(), next(), next()) * 10.0;
             let b = a + (DVec3::new(next(), next(), next()) - 0.5) * 10.0 * next();
-            let grow = 0.5;
+            let grow = if next() < 0.5 { 0.004 } else { 0.5 };
             let mut got = vec![false; spots.len()];
             grid.near_segment(a, b, grow, |i| got[i as usize] = true);
             for (i, &p) in spots.iter().enumerate() {
