@@ -51,8 +51,9 @@ pub(crate) enum Kind {
     Cell,
     /// The plane of the polygons `tree.polygons[start..end]`, all coplanar with it.
     Face { start: u32, end: u32 },
-    /// A cell left unbuilt because nothing to be clipped can reach it (see
-    /// [`Tree::build_focused`]); `content` still bounds its polygons, and
+    /// A cell left unbuilt because nothing to be clipped comes near its polygons (see
+    /// [`Tree::build_focused`]: fragments may still reach it, away from its polygons, and are
+    /// labelled whole from a point); `content` still bounds its polygons, and
     /// `tree.stub_polygons[start..end]` lists the solid's polygons its pieces were cut from.
     /// Plane and links are unused.
     Stub { start: u32, end: u32 },
