@@ -107,7 +107,8 @@ impl<'p> Grid<'p> {
         let pad = grow + 1e-12 * (len + a.abs().max_element() + b.abs().max_element());
         // A reach wider than half a cell (a wide weld's, among small edges) would make each
         // piece ask many cells: the tree instead.
-        if pieces > MOST_PIECES || !pieces.is_finite() || !(2.0 * pad <= self.cell) {
+        if pieces > MOST_PIECES || !pieces.is_finite() || !pad.is_finite() || 2.0 * pad > self.cell
+        {
             let tree = self.tree.get_or_init(|| {
                 let boxes: Vec<Aabb> = self.spots.iter().map(|&p| Aabb::new(p, p)).collect();
                 Bvh::build(&boxes)
