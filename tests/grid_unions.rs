@@ -141,15 +141,23 @@ fn a_thousand_grid_boxes_union_exactly() {
 
 /// A 32×16 and a 64×32 sphere minus the same sphere turned by 1e-4° about a skew axis: every
 /// pair of matching facets crosses at 1.7e-6 rad, leaving slivers up to 1.7e-7 thick. The
-/// result must be closed with a volume ≥ 0, in bounded time. Open: each operand's facet is
-/// cut where the other's plane crosses it, the two cut lines landing a rounding error over the
-/// angle apart (4e-11 … 3e-9, beyond the 3e-11 weld). The repair now gives up after two passes
-/// where thousands of crack points are left (3618 at 32×16), so the open result comes back in
-/// one repair's time for callers to refuse; 256×128 has a negative solid volume (−7.8e-8).
-/// Measured again after the near-coplanar fixes of `Polygon::split` and
-/// `attach_edge_planes_among` (which close the boxes turned 1e-10°), unchanged: 32×16 gives
-/// 5,613 triangles, 32 shells, 970 boundary edges, mesh 2.83e-7 against the solid's 3.57e-7;
-/// 64×32 4,374 boundary edges, 50 shells; 128×64 17,439 boundary edges.
+/// result must be closed with the volume of the slivers (`first_order_sliver_volume`: 3.5801e-7
+/// at 32×16, 1.8074e-7 at 64×32), in bounded time. Open: 32×16 gives 5,613 triangles, 32
+/// shells, 970 boundary edges, mesh 2.83e-7 against the solid's 3.57e-7; 64×32 4,374 boundary
+/// edges, 50 shells; 128×64 17,439 boundary edges (the repair gives up after two passes where
+/// thousands of crack points are left, 1912 at 32×16).
+///
+/// Traced at 32×16 (the first crack): A's facet f and B's twin f' cross along a line L. A's
+/// polygon on f has an edge along L from P = f ∩ g ∩ f' (its edge with neighbour g cut by f',
+/// interpolated) to a vertex 0.06 away; B's polygon on f' has a corner Z on L (its edge cut by
+/// f) 1.3e-3 from P, which must lie on A's edge as a T-junction. Both points lie within 1e-16
+/// of f and f', yet Z is 2.2e-10 off A's edge: points within rounding of two planes crossing at
+/// 1.7e-6 rad fill a band 1e-10 wide about their line, and a point and a segment computed apart
+/// in it miss each other by up to its width, 8 welds. Moving every vertex on three planes, two
+/// nearly parallel, to their `meet` (one computed line for every point on L) closes 32×16 with
+/// the first-order volume (3.58040e-7), but leaves cracks at 64×32 where four planes nearly
+/// meet in a point, and shifts the polygons of cubes turned 1e-5° and less by 0.6 % … 26 %
+/// (`robustness.rs`, `turned_cubes.rs`): not landed (team notes, turned13).
 #[test]
 #[ignore = "open: 32×16 — 970 boundary edges, 32 shells: facets crossing at 1.7e-6 rad leave slits"]
 fn sphere_minus_itself_turned_a_ten_thousandth_of_a_degree() {
@@ -169,6 +177,49 @@ fn sphere_minus_itself_turned_a_ten_thousandth_of_a_degree() {
             result.volume() >= 0.0 && report.volume >= 0.0,
             "{what}: {report}"
         );
+        // Within 1e-3 of the first order and what the first weld (8 tolerances) explains over
+        // both sides of the slivers (twice the sphere's area).
+        let want = first_order_sliver_volume(&a, &b);
+        let weld = 8.0 * result.tolerance().eps() * 2.0 * 4.0 * std::f64::consts::PI;
+        assert!(
+            (report.volume - want).abs() <= 1e-3 * want + weld,
+            "{what}: mesh {:e} want {want:e}",
+            report.volume
+        );
         assert!(elapsed.as_secs_f64() < 2.0, "{what}: {elapsed:?}");
     }
+}
+
+/// The volume of `a` less `b`, `b` being `a` turned by a hair with its polygons in the same
+/// order, to first order: over each facet of `a`, the positive part of the distance to the
+/// twin facet's plane (linear across the facet), by midpoint quadrature on 64² sub-triangles of
+/// each fan triangle. The second order is the angle times smaller.
+fn first_order_sliver_volume(a: &Solid, b: &Solid) -> f64 {
+    let n = 64;
+    let mut total = 0.0;
+    for (p, q) in a.polygons().iter().zip(b.polygons()) {
+        let plane = q.plane();
+        for [x, y, z] in p.fan() {
+            let d = [x, y, z].map(|v| plane.distance(v));
+            let area = 0.5 * (y - x).cross(z - x).length();
+            let mut sum = 0.0;
+            for i in 0..n {
+                for j in 0..n - i {
+                    // The upward sub-triangle at (i, j) and, where there is one, the downward.
+                    for (s, t) in [(1.0, 1.0), (2.0, 2.0)] {
+                        if s == 2.0 && i + j + 1 >= n {
+                            continue;
+                        }
+                        let (u, w) = (
+                            (i as f64 + s / 3.0) / n as f64,
+                            (j as f64 + t / 3.0) / n as f64,
+                        );
+                        sum += (d[0] * (1.0 - u - w) + d[1] * u + d[2] * w).max(0.0);
+                    }
+                }
+            }
+            total += area * sum / (n * n) as f64;
+        }
+    }
+    total
 }
