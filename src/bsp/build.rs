@@ -7,7 +7,7 @@ use glam::DVec3;
 
 use super::{Kind, Label, Link, Node, Tree};
 use crate::geom::{Aabb, Plane, Side};
-use crate::polygon::{Polygon, Split};
+use crate::polygon::{Polygon, Split, Vertices};
 
 /// Cells holding more polygons than this are cut by an axis-aligned plane when a good one exists.
 const CELL_POLYGONS: usize = 12;
@@ -66,6 +66,13 @@ impl<'a> Arena<'a> {
             Some(p) => p,
             None => &self.pieces[id - self.base.len()],
         }
+    }
+
+    /// Whether `id` is one of the solid's own polygons, not a piece this build cut: where it
+    /// tracks no edge planes, its vertices were made on no plane but those of the polygons
+    /// sharing them (see [`Polygon::split_as`]).
+    fn given(&self, id: u32) -> bool {
+        (id as usize) < self.base.len()
     }
 
     /// The index in `base` of the polygon `id` is or was cut from.
@@ -235,6 +242,7 @@ impl Tree {
     ) -> (Node, Vec<u32>, Vec<u32>) {
         let chosen = choose_splitter(&ids, arena, eps, scratch);
         let plane = *arena.poly(chosen).plane();
+        let splitter: Vertices = arena.poly(chosen).vertices().iter().copied().collect();
         let start = self.polygons.len() as u32;
         let mut own = Aabb::EMPTY;
         let (mut front, mut back) = (Vec::with_capacity(ids.len()), Vec::with_capacity(ids.len()));
@@ -248,7 +256,7 @@ impl Tree {
                 Class::BackNear if !poly.nearly_parallel(&plane) => Split::Back,
                 // Nearly parallel planes: coplanar only within the band `split` tells.
                 Class::Coplanar if poly.coplanar_within_eps(&plane) => Split::Coplanar,
-                _ => poly.split(&plane, eps),
+                _ => poly.split_as(&plane, eps, arena.given(id).then_some(&splitter[..])),
             };
             match split {
                 Split::Coplanar => {
@@ -434,7 +442,8 @@ fn split_cell(ids: Vec<u32>, plane: &Plane, eps: f64, arena: &mut Arena) -> (Vec
         let quick = (b.min[axis] < at - eps && b.max[axis] > at + eps)
             .then(|| poly.split_axis(plane, axis, eps))
             .flatten();
-        match quick.unwrap_or_else(|| poly.split(plane, eps)) {
+        let given = arena.given(id).then_some(&[][..]);
+        match quick.unwrap_or_else(|| poly.split_as(plane, eps, given)) {
             Split::Front => front.push(id),
             Split::Back => back.push(id),
             Split::Coplanar if arena.poly(id).plane().normal.dot(plane.normal) > 0.0 => {

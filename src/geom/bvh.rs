@@ -188,12 +188,15 @@ impl Bvh {
     /// of [`Bvh::cut`]) and item `j` of `other` whose leaves' boxes overlap, and so every box
     /// above them. One descent of both trees together: querying `other` once per item of this
     /// one enters the top of `other` again for every query (on the T-junction search, ~130 nodes
-    /// per query for ~11 items found).
+    /// per query for ~11 items found). Used by the tests; callers take a margin.
+    #[cfg(test)]
     pub fn visit_pairs(&self, from: u32, other: &Bvh, pair: impl FnMut(u32, u32)) {
         self.visit_pairs_within(from, other, 0.0, pair);
     }
 
-    /// [`Bvh::visit_pairs`] for leaves whose boxes come within `margin` of each other.
+    /// Calls `pair(i, j)` for every item `i` below node `from` of this tree (0 for all, or one
+    /// of [`Bvh::cut`]) and item `j` of `other` whose leaves' boxes come within `margin` of each
+    /// other, in one descent of both trees together.
     pub fn visit_pairs_within(
         &self,
         from: u32,
@@ -252,6 +255,7 @@ impl Bvh {
     }
 
     /// The items in the order [`Bvh::visit`] meets them (where it enters every leaf).
+    #[cfg(test)]
     pub fn order(&self) -> &[u32] {
         &self.items
     }

@@ -75,6 +75,16 @@ impl Polygon {
     /// other operand computes the same way.
     #[must_use]
     pub fn split(&self, plane: &Plane, eps: f64) -> Split {
+        self.split_as(plane, eps, None)
+    }
+
+    /// [`Polygon::split`], where `given`, for a polygon tracking no edge planes, holds the
+    /// vertices of the polygon whose plane `plane` is (none for a plane of no polygon) and
+    /// says that this one was never cut: only its vertices shared with that polygon may then
+    /// have been made on `plane` (see `made_on`), as a clip would tell from the edge planes. A
+    /// tree's own polygons track none, and the pieces its build cuts hold vertices made on its
+    /// planes; the build tells which are which.
+    pub(crate) fn split_as(&self, plane: &Plane, eps: f64, given: Option<&[DVec3]>) -> Split {
         if self.plane.is_same_or_flipped(plane) {
             return Split::Coplanar;
         }
@@ -101,7 +111,7 @@ impl Polygon {
         let mut tight: SmallVec<[f64; 8]> = SmallVec::new();
         if sine < ON_BAND_BELOW {
             tight.extend(self.vertices.iter().enumerate().map(|(i, &v)| {
-                let noise = if self.made_on(i, plane) {
+                let noise = if self.made_on(i, plane, given) {
                     plane_noise(plane, v)
                 } else {
                     given_noise(plane, v)
@@ -185,17 +195,19 @@ const GIVEN_NOISE_ULPS: f64 = 8.0;
 
 impl Polygon {
     /// Whether vertex `i` may have been computed on `plane` (or its flip): an edge beside it
-    /// lies in `plane`, or the plane of an edge beside it is not known. Such a vertex keeps
+    /// lies in `plane`, or the plane of an edge beside it is not known; where the polygon
+    /// tracks no edge planes at all, any vertex, or if it is `given` (never cut) one that
+    /// the polygon whose plane `plane` is holds too. Such a vertex keeps
     /// [`plane_noise`]; any other is taken as given and gets [`given_noise`]. A polygon with an
     /// edge in `plane` lies on one side of it, so it is never cut by it: where a vertex reads
     /// as made on `plane` in one polygon and as given in another, only the second can be cut
     /// there, and its cut point on the shared edge meets the first as a T-junction within
     /// rounding, which `to_mesh` resolves as any other.
-    fn made_on(&self, i: usize, plane: &Plane) -> bool {
+    fn made_on(&self, i: usize, plane: &Plane, given: Option<&[DVec3]>) -> bool {
         let n = self.vertices.len();
         let edges = self.edges();
         if edges.len() != n {
-            return true;
+            return given.is_none_or(|on| on.contains(&self.vertices[i]));
         }
         [&edges[(i + n - 1) % n], &edges[i]]
             .iter()

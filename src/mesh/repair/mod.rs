@@ -22,6 +22,7 @@
 mod cracks;
 mod discs;
 mod edges;
+mod grid;
 mod indexed;
 mod regions;
 mod shells;

@@ -6,8 +6,8 @@ use smallvec::SmallVec;
 
 use super::Ring;
 use super::edges::{sort_by_edge, undirected};
+use super::grid::Grid;
 use crate::geom::Aabb;
-use crate::geom::bvh::Bvh;
 use crate::mesh::weld::Wide;
 
 /// Inserts into every ring edge, in order along it, each vertex within its reach (`delta`, or
@@ -16,9 +16,9 @@ use crate::mesh::weld::Wide;
 /// did) lies up to that move off where it was computed, so it takes vertices that much
 /// farther too.
 ///
-/// The searched edges and the candidate vertices each get a BVH and both are descended
-/// together, once: a query of the vertices' tree per edge re-entered its top levels every time
-/// (~130 nodes per query for ~11 vertices found, most of the pass on real models).
+/// The candidate vertices go into a uniform grid and each searched edge asks it for the cells
+/// along it ([`Grid`]): a BVH of the vertices queried per edge re-entered its top levels every
+/// time, and a BVH of the edges descended together with it paired whole leaves.
 ///
 /// With `skip_matched`, an edge whose reverse some other ring already has is taken as matched
 /// and left alone: usually only the polygons on its two sides meet along it, and that is most
@@ -71,19 +71,12 @@ pub(super) fn insert_on_edges(
         .map(|&v| wide.reach(positions[v as usize], delta))
         .collect();
     let spots: Vec<DVec3> = points.iter().map(|&v| positions[v as usize]).collect();
-    let boxes: Vec<Aabb> = spots.iter().map(|&p| Aabb::new(p, p)).collect();
-    let bvh = Bvh::build(&boxes);
-    // Where each point comes in the tree's visiting order: ties of the order along an edge
-    // (below) fall to it, as they did when each edge queried the tree on its own.
-    let mut rank = vec![0u32; points.len()];
-    for (k, &item) in bvh.order().iter().enumerate() {
-        rank[item as usize] = k as u32;
-    }
     // The edges to search, as (ring edge, first end, second end, drag), each with its box grown
     // by the reach and drag: a point within reach of the edge lies in it.
     let dragged = |v: u32| drag.get(v as usize).copied().unwrap_or(0.0);
     let mut edges: Vec<(u32, u32, u32, f64)> = Vec::new();
     let mut edge_boxes: Vec<Aabb> = Vec::new();
+    let mut lengths: Vec<f64> = Vec::new();
     for (ring, &first) in rings.iter().zip(&first_edge) {
         let n = ring.verts.len();
         for k in 0..n {
@@ -96,28 +89,37 @@ pub(super) fn insert_on_edges(
             let grow = search + slack;
             edges.push(((first + k) as u32, ia, ib, slack));
             edge_boxes.push(Aabb::new(a.min(b) - grow, a.max(b) + grow));
+            lengths.push(a.distance(b));
         }
     }
-    // One descent of both trees finds every (edge, point) pair whose boxes meet, in parallel
-    // over pieces of the edges' tree; only the points on an edge are kept.
-    let edge_bvh = Bvh::build(&edge_boxes);
-    let pieces = edge_bvh.cut(64);
-    let mut hits: Vec<Hit> = pieces
+    if edges.is_empty() || points.is_empty() {
+        return;
+    }
+    // Cells two median edges wide (see [`Grid`]).
+    let median = *lengths
+        .select_nth_unstable_by(edges.len() / 2, f64::total_cmp)
+        .1;
+    let grid = Grid::new(&spots, 2.0 * median);
+    // Each edge asks the grid for the points near it, in parallel over runs of edges; only the
+    // points on an edge are kept, each once.
+    let mut hits: Vec<Hit> = edges
         .par_iter()
-        .flat_map_iter(|&piece| {
-            let mut found = Vec::new();
-            edge_bvh.visit_pairs(piece, &bvh, |e, item| {
+        .zip(edge_boxes.par_iter())
+        .with_min_len(256)
+        .flat_map_iter(|(&(at, ia, ib, slack), edge_box)| {
+            let mut found: SmallVec<[Hit; 2]> = SmallVec::new();
+            let a = positions[ia as usize];
+            let d = positions[ib as usize] - a;
+            let grow = search + slack;
+            grid.near_segment(a, positions[ib as usize], grow, |item| {
                 let p = spots[item as usize];
-                if !edge_boxes[e as usize].contains_point(p, 0.0) {
+                if !edge_box.contains_point(p, 0.0) {
                     return;
                 }
-                let (at, ia, ib, slack) = edges[e as usize];
                 let w = points[item as usize];
-                if w == ia || w == ib {
+                if w == ia || w == ib || found.iter().any(|h| h.vertex == w) {
                     return;
                 }
-                let a = positions[ia as usize];
-                let d = positions[ib as usize] - a;
                 let r = reach[item as usize];
                 // Distance to the line by the cross product: `a + d·t` would carry the rounding
                 // of the edge's length (10²² on a 10³⁸-long edge).
@@ -126,7 +128,7 @@ pub(super) fn insert_on_edges(
                 let off = (p - a).cross(d).length() / len;
                 if along > r && along < len - r && off <= r + slack {
                     found.push(Hit {
-                        key: u64::from(at) << 32 | u64::from(rank[item as usize]),
+                        key: u64::from(at) << 32 | u64::from(w),
                         along,
                         vertex: w,
                     });
@@ -178,8 +180,8 @@ pub(super) fn insert_on_edges(
     });
 }
 
-/// A vertex found on a ring edge: `key` is the ring edge's index and the vertex's rank in the
-/// search tree's order, `along` its distance along the edge.
+/// A vertex found on a ring edge: `key` is the ring edge's index and the vertex's, `along` its
+/// distance along the edge.
 struct Hit {
     key: u64,
     along: f64,
