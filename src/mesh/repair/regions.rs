@@ -74,8 +74,10 @@ pub(super) fn triangulate_regions(
             .filter(|&i| results[i].is_none() && regions[i].rings.len() > 1)
             .collect();
         if failed.is_empty() {
-            let mut tris = Vec::new();
-            let mut sources = Vec::new();
+            let count = lone.iter().flatten().count()
+                + results.iter().flatten().map(Vec::len).sum::<usize>();
+            let mut tris = Vec::with_capacity(count);
+            let mut sources = Vec::with_capacity(count);
             for (i, result) in results.into_iter().enumerate() {
                 if let Some(t) = lone[i] {
                     sources.push(regions[i].source);
@@ -284,7 +286,8 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], pinned: &[b
         region: u32,
         alive: bool,
     }
-    let mut edges: Vec<Edge> = Vec::new();
+    let total: usize = boundaries.iter().map(Vec::len).sum();
+    let mut edges: Vec<Edge> = Vec::with_capacity(total);
     for (r, b) in boundaries.iter().enumerate() {
         edges.extend(b.iter().map(|&(a, b)| Edge {
             a,
@@ -293,30 +296,26 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], pinned: &[b
             alive: true,
         }));
     }
-    // Indexed by vertex: every boundary vertex is a welded position, and a table over all of
-    // them is cheaper than hashing each edge end.
-    // Four inline: a vertex where four regions meet (a quad mesh's) needs no allocation, and the
-    // list is no larger than one of two.
-    let mut outgoing: Vec<SmallVec<[u32; 4]>> = vec![SmallVec::new(); positions.len()];
-    let mut incoming: Vec<SmallVec<[u32; 4]>> = vec![SmallVec::new(); positions.len()];
-    for (i, e) in edges.iter().enumerate() {
-        outgoing[e.a as usize].push(i as u32);
-        incoming[e.b as usize].push(i as u32);
-    }
+    // Per vertex, its outgoing and its incoming edges, in edge order: one list each, cut by
+    // vertex (a counting sort), not a small vector per vertex, which spilled to the heap at
+    // every vertex of more than four boundary edges. A vertex's lists only shrink: it is
+    // emptied when dropped, and an incoming edge is replaced by the one rerouted into it.
+    let mut outgoing = Lists::new(positions.len(), edges.iter().map(|e| e.a));
+    let mut incoming = Lists::new(positions.len(), edges.iter().map(|e| e.b));
     let mut work: Vec<u32> = (0..positions.len() as u32)
-        .filter(|&v| !outgoing[v as usize].is_empty() && !pinned[v as usize])
+        .filter(|&v| !outgoing.of(v).is_empty() && !pinned[v as usize])
         .collect();
     while let Some(v) = work.pop() {
-        let (outs, ins) = (&outgoing[v as usize], &incoming[v as usize]);
+        let (outs, ins) = (outgoing.of(v), incoming.of(v));
         if outs.is_empty() || outs.len() != ins.len() {
             continue;
         }
         // Exactly two neighbours, v strictly between them on a line.
         let mut nbrs: SmallVec<[u32; 2]> = SmallVec::new();
-        for &e in outs.iter() {
+        for &e in outs {
             push_unique(&mut nbrs, edges[e as usize].b);
         }
-        for &e in ins.iter() {
+        for &e in ins {
             push_unique(&mut nbrs, edges[e as usize].a);
         }
         if nbrs.len() != 2 || !between(positions, nbrs[0], v, nbrs[1], delta) {
@@ -347,12 +346,10 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], pinned: &[b
             let y = edges[eo as usize].b;
             edges[eo as usize].alive = false;
             edges[ei as usize].b = y;
-            let into_y = &mut incoming[y as usize];
-            into_y.retain(|e| *e != eo);
-            into_y.push(ei);
+            incoming.replace(y, eo, ei);
         }
-        outgoing[v as usize].clear();
-        incoming[v as usize].clear();
+        outgoing.clear(v);
+        incoming.clear(v);
         work.extend(nbrs.into_iter().filter(|&n| !pinned[n as usize]));
     }
     for b in boundaries.iter_mut() {
@@ -360,6 +357,55 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], pinned: &[b
     }
     for e in edges.into_iter().filter(|e| e.alive) {
         boundaries[e.region as usize].push((e.a, e.b));
+    }
+}
+
+/// Per vertex, a list of edge indices in one array: `items[start[v]..start[v] + len[v]]`.
+struct Lists {
+    start: Vec<u32>,
+    len: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl Lists {
+    /// The lists of edges `0..` by the vertex `ends` gives each, in edge order.
+    fn new(vertex_count: usize, ends: impl Iterator<Item = u32> + Clone) -> Self {
+        let mut len = vec![0u32; vertex_count];
+        for v in ends.clone() {
+            len[v as usize] += 1;
+        }
+        let mut start = Vec::with_capacity(vertex_count);
+        let mut at = 0u32;
+        for &n in &len {
+            start.push(at);
+            at += n;
+        }
+        let mut items = vec![0u32; at as usize];
+        let mut next = start.clone();
+        for (e, v) in ends.enumerate() {
+            items[next[v as usize] as usize] = e as u32;
+            next[v as usize] += 1;
+        }
+        Lists { start, len, items }
+    }
+
+    fn of(&self, v: u32) -> &[u32] {
+        let s = self.start[v as usize] as usize;
+        &self.items[s..s + self.len[v as usize] as usize]
+    }
+
+    fn clear(&mut self, v: u32) {
+        self.len[v as usize] = 0;
+    }
+
+    /// Takes `old` out of `v`'s list and puts `new` at its end.
+    fn replace(&mut self, v: u32, old: u32, new: u32) {
+        let s = self.start[v as usize] as usize;
+        let list = &mut self.items[s..s + self.len[v as usize] as usize];
+        if let Some(k) = list.iter().position(|&e| e == old) {
+            list[k..].rotate_left(1);
+            *list.last_mut().expect("holds old") = new;
+        }
     }
 }
 
