@@ -123,11 +123,14 @@ fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) 
     let partner = edge_partners(rings, positions.len());
     let plane_of = |r: u32| polygons[rings[r as usize].polygon as usize].plane();
     let source_of = |r: u32| polygons[rings[r as usize].polygon as usize].source();
-    // group[r]: the group ring r belongs to; members[g]: its rings, the first giving the plane.
+    // group[r]: the group ring r belongs to, named by its first ring, which gives the plane
+    // (a group only grows by appending, so its first ring stays). Its rings are a chain:
+    // next[r] the ring after r (`u32::MAX` at the end), last[g] and size[g] of group g. A list
+    // per ring was an allocation per join.
     let mut group: Vec<u32> = (0..rings.len() as u32).collect();
-    let mut members: Vec<SmallVec<[u32; 2]>> = (0..rings.len() as u32)
-        .map(|r| smallvec::smallvec![r])
-        .collect();
+    let mut next: Vec<u32> = vec![u32::MAX; rings.len()];
+    let mut last: Vec<u32> = group.clone();
+    let mut size: Vec<u32> = vec![1; rings.len()];
     let mut half = 0usize;
     for (r, ring) in rings.iter().enumerate() {
         let edges = ring.verts.len();
@@ -139,14 +142,14 @@ fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) 
             if gx == gy {
                 continue;
             }
-            let (big, small) = if members[gx as usize].len() >= members[gy as usize].len() {
+            let (big, small) = if size[gx as usize] >= size[gy as usize] {
                 (gx, gy)
             } else {
                 (gy, gx)
             };
-            let plane = plane_of(members[big as usize][0]);
-            let joins = members[small as usize].iter().all(|&m| {
-                source_of(m) == source_of(members[big as usize][0])
+            let plane = plane_of(big);
+            let joins = chain(&next, small).all(|m| {
+                source_of(m) == source_of(big)
                     && plane_of(m).normal.dot(plane.normal) > 0.0
                     && rings[m as usize]
                         .verts
@@ -154,27 +157,37 @@ fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) 
                         .all(|&v| plane.distance(positions[v as usize]).abs() <= delta)
             });
             if joins {
-                let moved = std::mem::take(&mut members[small as usize]);
-                for &m in &moved {
+                let mut m = small;
+                while m != u32::MAX {
                     group[m as usize] = big;
+                    m = next[m as usize];
                 }
-                members[big as usize].extend(moved);
+                next[last[big as usize] as usize] = small;
+                last[big as usize] = last[small as usize];
+                size[big as usize] += size[small as usize];
             }
         }
         half += edges;
     }
-    members
-        .into_iter()
-        .filter(|m| !m.is_empty())
-        .map(|rings_of| {
-            let first = polygons[rings[rings_of[0] as usize].polygon as usize].plane();
+    (0..rings.len() as u32)
+        .filter(|&g| group[g as usize] == g)
+        .map(|g| {
+            let first = polygons[rings[g as usize].polygon as usize].plane();
             Region {
-                source: polygons[rings[rings_of[0] as usize].polygon as usize].source(),
+                source: polygons[rings[g as usize].polygon as usize].source(),
                 normal: first.normal,
-                rings: rings_of.into_vec(),
+                rings: chain(&next, g).collect(),
             }
         })
         .collect()
+}
+
+/// The rings of the chain starting at `first` (see [`group`]).
+fn chain(next: &[u32], first: u32) -> impl Iterator<Item = u32> + '_ {
+    std::iter::successors(Some(first), move |&r| {
+        let n = next[r as usize];
+        (n != u32::MAX).then_some(n)
+    })
 }
 
 /// For each ring edge, in ring order and edge order, the ring across it when exactly one ring
