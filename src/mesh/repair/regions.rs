@@ -243,12 +243,23 @@ fn ring_edges(v: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {
     (0..v.len()).map(move |k| (v[k], v[(k + 1) % v.len()]))
 }
 
+/// The most corners of a lone ring that [`boundary`] checks for repeats pair by pair.
+const DISTINCT_BY_PAIRS: usize = 16;
+
 /// The directed edges of a region's rings that no other ring of it (nor the ring itself, where
 /// a T-junction made a spike `a → b → a`) uses the other way.
 ///
 /// Most regions are a ring or two: the uses are counted in a sorted list, not a hash map, so a
 /// region costs no allocation beyond its edges.
 fn boundary(rings: &[Ring], members: &[u32]) -> Vec<(u32, u32)> {
+    // One ring through distinct vertices (most regions apart from a few big ones): no edge is
+    // used twice, and a pairwise look at its few corners is cheaper than counting.
+    if let [only] = members {
+        let v = &rings[*only as usize].verts;
+        if v.len() <= DISTINCT_BY_PAIRS && (1..v.len()).all(|k| !v[..k].contains(&v[k])) {
+            return ring_edges(v).collect();
+        }
+    }
     let total = members.iter().map(|&m| rings[m as usize].verts.len()).sum();
     let mut edges: Vec<(u32, u32)> = Vec::with_capacity(total);
     for &m in members {
