@@ -335,14 +335,11 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], pinned: &[b
             continue;
         }
         // Exactly two neighbours, v strictly between them on a line.
-        let mut nbrs: SmallVec<[u32; 2]> = SmallVec::new();
-        for &e in outs {
-            push_unique(&mut nbrs, edges[e as usize].b);
-        }
-        for &e in ins {
-            push_unique(&mut nbrs, edges[e as usize].a);
-        }
-        if nbrs.len() != 2 || !between(positions, nbrs[0], v, nbrs[1], delta) {
+        let ends = outs.iter().map(|&e| edges[e as usize].b);
+        let Some(nbrs) = two_distinct(ends.chain(ins.iter().map(|&e| edges[e as usize].a))) else {
+            continue;
+        };
+        if !between(positions, nbrs[0], v, nbrs[1], delta) {
             continue;
         }
         // Pair each incoming x→v with an outgoing v→y of the same region, y ≠ x.
@@ -427,16 +424,31 @@ impl Lists {
         let s = self.start[v as usize] as usize;
         let list = &mut self.items[s..s + self.len[v as usize] as usize];
         if let Some(k) = list.iter().position(|&e| e == old) {
-            list[k..].rotate_left(1);
+            // A short list: shifted by hand (a rotation costs more to set up than to do).
+            for j in k + 1..list.len() {
+                list[j - 1] = list[j];
+            }
             *list.last_mut().expect("holds old") = new;
         }
     }
 }
 
-fn push_unique(v: &mut SmallVec<[u32; 2]>, x: u32) {
-    if !v.contains(&x) {
-        v.push(x);
+/// The two values `items` holds, in order of first appearance, when it holds exactly two
+/// (looking no further than a third).
+fn two_distinct(items: impl Iterator<Item = u32>) -> Option<[u32; 2]> {
+    let mut found = [u32::MAX; 2];
+    let mut count = 0;
+    for x in items {
+        if found[..count].contains(&x) {
+            continue;
+        }
+        if count == 2 {
+            return None;
+        }
+        found[count] = x;
+        count += 1;
     }
+    (count == 2).then_some(found)
 }
 
 /// True when `v` lies within `delta` of the segment `a`–`b` and strictly inside it.
