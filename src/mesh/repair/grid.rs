@@ -83,9 +83,7 @@ impl<'p> Grid<'p> {
         if !spots.is_empty() {
             let top = grid.index(hi);
             let dims = top.map(|t| t + 1);
-            let total = dims[0]
-                .saturating_mul(dims[1])
-                .saturating_mul(dims[2]);
+            let total = dims[0].saturating_mul(dims[1]).saturating_mul(dims[2]);
             if total <= DENSE_CELLS_PER_POINT * spots.len() as u64 + DENSE_CELLS_ALWAYS {
                 grid.dims = dims;
                 let linear: Vec<u32> = spots
