@@ -22,6 +22,24 @@ impl DisjointSets {
         x
     }
 
+    /// Joins the sets of `items` ([`DisjointSets::union`] of the first with each other one,
+    /// with the first's root found once).
+    pub fn union_all<const N: usize>(&mut self, items: [usize; N]) {
+        let Some(&first) = items.first() else {
+            return;
+        };
+        let mut root = self.find(first);
+        for &x in &items[1..] {
+            let other = self.find(x);
+            if root < other {
+                self.parent[other] = root;
+            } else {
+                self.parent[root] = other;
+                root = other;
+            }
+        }
+    }
+
     /// Joins the sets of `a` and `b`; the smaller root wins, so a set's root is its first member.
     pub fn union(&mut self, a: usize, b: usize) {
         let (ra, rb) = (self.find(a), self.find(b));

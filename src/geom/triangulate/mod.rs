@@ -310,7 +310,8 @@ fn ear_clip_loop(
         return None;
     }
     let pts: SmallVec<[DVec3; 8]> = ring.iter().map(|&i| positions[i as usize]).collect();
-    let tris = ear_clip(&project(&pts, normal))?;
+    let flat: SmallVec<[DVec2; 8]> = pts.iter().map(|&p| project_point(p, normal)).collect();
+    let tris = ear_clip(&flat)?;
     // Ear clipping decides on the projection; refuse any triangle flat in 3D.
     if tris
         .iter()
@@ -324,6 +325,11 @@ fn ear_clip_loop(
 /// Projects points of a plane with `normal` to 2D, dropping the normal's dominant axis and
 /// keeping the winding (counter-clockwise seen from the front stays counter-clockwise).
 pub(crate) fn project(points: &[DVec3], normal: DVec3) -> Vec<DVec2> {
+    points.iter().map(|&p| project_point(p, normal)).collect()
+}
+
+/// One point of [`project`].
+fn project_point(p: DVec3, normal: DVec3) -> DVec2 {
     let a = normal.abs();
     let (u, v, sign) = if a.x >= a.y && a.x >= a.z {
         (1, 2, normal.x)
@@ -332,16 +338,11 @@ pub(crate) fn project(points: &[DVec3], normal: DVec3) -> Vec<DVec2> {
     } else {
         (0, 1, normal.z)
     };
-    points
-        .iter()
-        .map(|p| {
-            if sign >= 0.0 {
-                DVec2::new(p[u], p[v])
-            } else {
-                DVec2::new(p[v], p[u])
-            }
-        })
-        .collect()
+    if sign >= 0.0 {
+        DVec2::new(p[u], p[v])
+    } else {
+        DVec2::new(p[v], p[u])
+    }
 }
 
 fn cross(o: DVec2, a: DVec2, b: DVec2) -> f64 {
@@ -351,13 +352,15 @@ fn cross(o: DVec2, a: DVec2, b: DVec2) -> f64 {
 /// Triangulates a simple polygon given counter-clockwise in 2D, returning index triples.
 /// Ears are clipped best-first (the fattest ear), which avoids needle triangles where a choice
 /// exists. `None` when the polygon is not simple enough to clip (self-intersecting).
-pub(crate) fn ear_clip(points: &[DVec2]) -> Option<Vec<[usize; 3]>> {
+///
+/// Small vectors: most polygons clipped are a few corners, one per region of `to_mesh`.
+pub(crate) fn ear_clip(points: &[DVec2]) -> Option<SmallVec<[[usize; 3]; 6]>> {
     let n = points.len();
     if n < 3 {
         return None;
     }
-    let mut ring: Vec<usize> = (0..n).collect();
-    let mut out = Vec::with_capacity(n - 2);
+    let mut ring: SmallVec<[usize; 8]> = (0..n).collect();
+    let mut out = SmallVec::with_capacity(n - 2);
     while ring.len() > 3 {
         let m = ring.len();
         let mut best: Option<(f64, usize)> = None;

@@ -6,6 +6,10 @@ pub(super) fn undirected(a: u32, b: u32) -> u64 {
     ((a.min(b) as u64) << 32) | a.max(b) as u64
 }
 
+/// Runs of at most this many entries (a vertex's edges, usually about six) are sorted by
+/// insertion.
+const INSERTION_RUN: usize = 16;
+
 /// Sorts `keyed` (pairs of [`undirected`] edge and a payload that grows with the position in
 /// the list) by key, then payload: the order `sort_unstable` gives, so each edge's uses come
 /// together in the order they were listed.
@@ -32,8 +36,17 @@ pub(super) fn sort_by_edge(keyed: &mut Vec<(u64, u32)>, vertex_count: usize) {
     }
     for v in 0..vertex_count {
         let run = &mut sorted[start[v] as usize..start[v + 1] as usize];
-        if run.len() > 1 {
+        if run.len() > INSERTION_RUN {
             run.sort_unstable();
+        } else {
+            // A vertex's few edges: an insertion sort, without the general sort's setup.
+            for i in 1..run.len() {
+                let mut j = i;
+                while j > 0 && run[j] < run[j - 1] {
+                    run.swap(j, j - 1);
+                    j -= 1;
+                }
+            }
         }
     }
     *keyed = sorted;

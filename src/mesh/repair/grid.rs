@@ -20,6 +20,15 @@ const AXIS_CELLS: f64 = 1_048_576.0;
 /// edge hundreds of cells long, next to a mesh of small ones).
 const MOST_PIECES: f64 = 256.0;
 
+/// A grid is dense (an array of every cell, not a map of the occupied ones) when its cells
+/// number at most this many per point, plus [`DENSE_CELLS_ALWAYS`]: the points of a boolean's
+/// cut lie on surfaces, a few per cell, so most grids qualify; a sparse spread of points (two
+/// far clusters) keeps the map.
+const DENSE_CELLS_PER_POINT: u64 = 16;
+
+/// Cells a grid may always have dense, whatever its points.
+const DENSE_CELLS_ALWAYS: u64 = 4096;
+
 /// Pieces of an edge per cell it crosses.
 const PIECES_PER_CELL: f64 = 1.0;
 
@@ -29,8 +38,14 @@ pub(super) struct Grid<'p> {
     origin: DVec3,
     inv: f64,
     cell: f64,
-    /// Per occupied cell key, its range in `items`.
+    /// Per occupied cell key, its range in `items` (a sparse grid; empty when dense).
     cells: FxHashMap<u64, (u32, u32)>,
+    /// A dense grid, where the points' extent holds few cells beside the points
+    /// ([`DENSE_CELLS_PER_POINT`]): cell `(x, y, z)`'s points are
+    /// `items[starts[c]..starts[c + 1]]` for `c = (x · dims[1] + y) · dims[2] + z`. Looking a
+    /// cell up is then an index, not a hash (most of the search's time was the lookups).
+    starts: Vec<u32>,
+    dims: [u64; 3],
     items: Vec<u32>,
     /// For edges cut into more than [`MOST_PIECES`] pieces: a tree of the points, built on first need.
     tree: std::sync::OnceLock<Bvh>,
@@ -60,9 +75,38 @@ impl<'p> Grid<'p> {
             inv: 1.0 / cell,
             cell,
             cells: FxHashMap::default(),
+            starts: Vec::new(),
+            dims: [0; 3],
             items: Vec::with_capacity(spots.len()),
             tree: std::sync::OnceLock::new(),
         };
+        if !spots.is_empty() {
+            let top = grid.index(hi);
+            let dims = top.map(|t| t + 1);
+            let total = dims[0].saturating_mul(dims[1]).saturating_mul(dims[2]);
+            if total <= DENSE_CELLS_PER_POINT * spots.len() as u64 + DENSE_CELLS_ALWAYS {
+                grid.dims = dims;
+                let linear: Vec<u32> = spots
+                    .iter()
+                    .map(|&p| grid.linear(grid.index(p)) as u32)
+                    .collect();
+                let mut starts = vec![0u32; total as usize + 1];
+                for &c in &linear {
+                    starts[c as usize + 1] += 1;
+                }
+                for c in 0..total as usize {
+                    starts[c + 1] += starts[c];
+                }
+                let mut next = starts.clone();
+                grid.items.resize(spots.len(), 0);
+                for (i, &c) in linear.iter().enumerate() {
+                    grid.items[next[c as usize] as usize] = i as u32;
+                    next[c as usize] += 1;
+                }
+                grid.starts = starts;
+                return grid;
+            }
+        }
         let mut keyed: Vec<(u64, u32)> = spots
             .iter()
             .enumerate()
@@ -84,6 +128,24 @@ impl<'p> Grid<'p> {
         }
         grid.items.extend(keyed.iter().map(|k| k.1));
         grid
+    }
+
+    /// The dense grid's index of cell `[x, y, z]` (each below `dims`).
+    fn linear(&self, [x, y, z]: [u64; 3]) -> u64 {
+        (x * self.dims[1] + y) * self.dims[2] + z
+    }
+
+    /// The points in cell `[x, y, z]`.
+    fn in_cell(&self, c: [u64; 3]) -> &[u32] {
+        if self.starts.is_empty() {
+            match self.cells.get(&pack(c[0], c[1], c[2])) {
+                Some(&(s, e)) => &self.items[s as usize..e as usize],
+                None => &[],
+            }
+        } else {
+            let at = self.linear(c) as usize;
+            &self.items[self.starts[at] as usize..self.starts[at + 1] as usize]
+        }
     }
 
     /// The cell indices of `p`, clamped to the grid.
@@ -126,6 +188,12 @@ impl<'p> Grid<'p> {
         let n = pieces as usize;
         let mut from = a;
         let mut seen: smallvec::SmallVec<[u64; 16]> = smallvec::SmallVec::new();
+        // A dense grid's cells end at `dims`; a sparse one's at the clamp.
+        let last = if self.starts.is_empty() {
+            [u64::MAX; 3]
+        } else {
+            self.dims.map(|d| d - 1)
+        };
         for k in 0..n {
             let to = if k + 1 == n {
                 b
@@ -134,18 +202,20 @@ impl<'p> Grid<'p> {
             };
             let [x0, y0, z0] = self.index(from.min(to) - pad);
             let [x1, y1, z1] = self.index(from.max(to) + pad);
+            let [x1, y1, z1] = [x1.min(last[0]), y1.min(last[1]), z1.min(last[2])];
             for x in x0..=x1 {
                 for y in y0..=y1 {
                     for z in z0..=z1 {
-                        let key = pack(x, y, z);
-                        if seen.iter().rev().take(27).any(|&k| k == key) {
-                            continue;
-                        }
-                        seen.push(key);
-                        if let Some(&(s, e)) = self.cells.get(&key) {
-                            for &i in &self.items[s as usize..e as usize] {
-                                near(i);
+                        // One piece meets each cell once; only a run of pieces meets one again.
+                        if n > 1 {
+                            let key = pack(x, y, z);
+                            if seen.iter().rev().take(27).any(|&k| k == key) {
+                                continue;
                             }
+                            seen.push(key);
+                        }
+                        for &i in self.in_cell([x, y, z]) {
+                            near(i);
                         }
                     }
                 }
@@ -166,7 +236,8 @@ mod tests {
     use super::Grid;
 
     /// Every point within reach of a segment is handed over, by the cells (short segments, a
-    /// small reach) and by the tree (long segments, or a reach wider than half a cell).
+    /// small reach; of a sparse grid and of a dense one) and by the tree (long segments, or a
+    /// reach wider than half a cell).
     #[test]
     fn hands_over_every_point_near_a_segment() {
         let mut spots = Vec::new();
@@ -180,18 +251,23 @@ mod tests {
         for _ in 0..2000 {
             spots.push(DVec3::new(next(), next(), next()) * 10.0);
         }
-        let grid = Grid::new(&spots, 0.01);
-        for _ in 0..200 {
-            let a = DVec3::new(next(), next(), next()) * 10.0;
-            let b = a + (DVec3::new(next(), next(), next()) - 0.5) * 10.0 * next();
-            let grow = if next() < 0.5 { 0.004 } else { 0.5 };
-            let mut got = vec![false; spots.len()];
-            grid.near_segment(a, b, grow, |i| got[i as usize] = true);
-            for (i, &p) in spots.iter().enumerate() {
-                let d = b - a;
-                let t = ((p - a).dot(d) / d.length_squared()).clamp(0.0, 1.0);
-                if p.distance(a + d * t) <= grow {
-                    assert!(got[i], "point {i} near {a} {b} missed");
+        // Cells 0.01 wide: a sparse grid (10⁹ cells); 0.5 wide: a dense one (8,000 cells).
+        for (cell, wide, dense) in [(0.01, 0.5, false), (0.5, 0.2, true)] {
+            let grid = Grid::new(&spots, cell);
+            assert_eq!(!grid.starts.is_empty(), dense);
+            for _ in 0..200 {
+                // Segments from inside the points' box to up to 5 beyond it.
+                let a = DVec3::new(next(), next(), next()) * 10.0;
+                let b = a + (DVec3::new(next(), next(), next()) - 0.5) * 10.0 * next();
+                let grow = if next() < 0.5 { 0.004 } else { wide };
+                let mut got = vec![false; spots.len()];
+                grid.near_segment(a, b, grow, |i| got[i as usize] = true);
+                for (i, &p) in spots.iter().enumerate() {
+                    let d = b - a;
+                    let t = ((p - a).dot(d) / d.length_squared()).clamp(0.0, 1.0);
+                    if p.distance(a + d * t) <= grow {
+                        assert!(got[i], "point {i} near {a} {b} missed (cells {cell})");
+                    }
                 }
             }
         }

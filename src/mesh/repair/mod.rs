@@ -432,13 +432,14 @@ fn rings_of(
 /// False when welding collapsed the ring onto a line (width below `delta` everywhere).
 fn spans_area(positions: &[DVec3], verts: &[u32], polygon: &Polygon, delta: f64) -> bool {
     let n = polygon.plane().normal;
-    let v: Vec<DVec3> = verts.iter().map(|&i| positions[i as usize]).collect();
+    let at = |k: usize| positions[verts[k] as usize];
+    let first = at(0);
     // Twice the area over the longest edge bounds the ring's width from below.
     let mut twice_area = 0.0;
     let mut longest: f64 = 0.0;
-    for i in 0..v.len() {
-        let (a, b) = (v[i], v[(i + 1) % v.len()]);
-        twice_area += (a - v[0]).cross(b - v[0]).dot(n);
+    for i in 0..verts.len() {
+        let (a, b) = (at(i), at((i + 1) % verts.len()));
+        twice_area += (a - first).cross(b - first).dot(n);
         longest = longest.max(a.distance(b));
     }
     longest > 0.0 && twice_area / longest > delta * 1e-3

@@ -74,8 +74,10 @@ pub(super) fn triangulate_regions(
             .filter(|&i| results[i].is_none() && regions[i].rings.len() > 1)
             .collect();
         if failed.is_empty() {
-            let mut tris = Vec::new();
-            let mut sources = Vec::new();
+            let count = lone.iter().flatten().count()
+                + results.iter().flatten().map(Vec::len).sum::<usize>();
+            let mut tris = Vec::with_capacity(count);
+            let mut sources = Vec::with_capacity(count);
             for (i, result) in results.into_iter().enumerate() {
                 if let Some(t) = lone[i] {
                     sources.push(regions[i].source);
@@ -121,11 +123,14 @@ fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) 
     let partner = edge_partners(rings, positions.len());
     let plane_of = |r: u32| polygons[rings[r as usize].polygon as usize].plane();
     let source_of = |r: u32| polygons[rings[r as usize].polygon as usize].source();
-    // group[r]: the group ring r belongs to; members[g]: its rings, the first giving the plane.
+    // group[r]: the group ring r belongs to, named by its first ring, which gives the plane
+    // (a group only grows by appending, so its first ring stays). Its rings are a chain:
+    // next[r] the ring after r (`u32::MAX` at the end), last[g] and size[g] of group g. A list
+    // per ring was an allocation per join.
     let mut group: Vec<u32> = (0..rings.len() as u32).collect();
-    let mut members: Vec<SmallVec<[u32; 2]>> = (0..rings.len() as u32)
-        .map(|r| smallvec::smallvec![r])
-        .collect();
+    let mut next: Vec<u32> = vec![u32::MAX; rings.len()];
+    let mut last: Vec<u32> = group.clone();
+    let mut size: Vec<u32> = vec![1; rings.len()];
     let mut half = 0usize;
     for (r, ring) in rings.iter().enumerate() {
         let edges = ring.verts.len();
@@ -137,14 +142,14 @@ fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) 
             if gx == gy {
                 continue;
             }
-            let (big, small) = if members[gx as usize].len() >= members[gy as usize].len() {
+            let (big, small) = if size[gx as usize] >= size[gy as usize] {
                 (gx, gy)
             } else {
                 (gy, gx)
             };
-            let plane = plane_of(members[big as usize][0]);
-            let joins = members[small as usize].iter().all(|&m| {
-                source_of(m) == source_of(members[big as usize][0])
+            let plane = plane_of(big);
+            let joins = chain(&next, small).all(|m| {
+                source_of(m) == source_of(big)
                     && plane_of(m).normal.dot(plane.normal) > 0.0
                     && rings[m as usize]
                         .verts
@@ -152,27 +157,37 @@ fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) 
                         .all(|&v| plane.distance(positions[v as usize]).abs() <= delta)
             });
             if joins {
-                let moved = std::mem::take(&mut members[small as usize]);
-                for &m in &moved {
+                let mut m = small;
+                while m != u32::MAX {
                     group[m as usize] = big;
+                    m = next[m as usize];
                 }
-                members[big as usize].extend(moved);
+                next[last[big as usize] as usize] = small;
+                last[big as usize] = last[small as usize];
+                size[big as usize] += size[small as usize];
             }
         }
         half += edges;
     }
-    members
-        .into_iter()
-        .filter(|m| !m.is_empty())
-        .map(|rings_of| {
-            let first = polygons[rings[rings_of[0] as usize].polygon as usize].plane();
+    (0..rings.len() as u32)
+        .filter(|&g| group[g as usize] == g)
+        .map(|g| {
+            let first = polygons[rings[g as usize].polygon as usize].plane();
             Region {
-                source: polygons[rings[rings_of[0] as usize].polygon as usize].source(),
+                source: polygons[rings[g as usize].polygon as usize].source(),
                 normal: first.normal,
-                rings: rings_of.into_vec(),
+                rings: chain(&next, g).collect(),
             }
         })
         .collect()
+}
+
+/// The rings of the chain starting at `first` (see [`group`]).
+fn chain(next: &[u32], first: u32) -> impl Iterator<Item = u32> + '_ {
+    std::iter::successors(Some(first), move |&r| {
+        let n = next[r as usize];
+        (n != u32::MAX).then_some(n)
+    })
 }
 
 /// For each ring edge, in ring order and edge order, the ring across it when exactly one ring
@@ -228,12 +243,23 @@ fn ring_edges(v: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {
     (0..v.len()).map(move |k| (v[k], v[(k + 1) % v.len()]))
 }
 
+/// The most corners of a lone ring that [`boundary`] checks for repeats pair by pair.
+const DISTINCT_BY_PAIRS: usize = 16;
+
 /// The directed edges of a region's rings that no other ring of it (nor the ring itself, where
 /// a T-junction made a spike `a → b → a`) uses the other way.
 ///
 /// Most regions are a ring or two: the uses are counted in a sorted list, not a hash map, so a
 /// region costs no allocation beyond its edges.
 fn boundary(rings: &[Ring], members: &[u32]) -> Vec<(u32, u32)> {
+    // One ring through distinct vertices (most regions apart from a few big ones): no edge is
+    // used twice, and a pairwise look at its few corners is cheaper than counting.
+    if let [only] = members {
+        let v = &rings[*only as usize].verts;
+        if v.len() <= DISTINCT_BY_PAIRS && (1..v.len()).all(|k| !v[..k].contains(&v[k])) {
+            return ring_edges(v).collect();
+        }
+    }
     let total = members.iter().map(|&m| rings[m as usize].verts.len()).sum();
     let mut edges: Vec<(u32, u32)> = Vec::with_capacity(total);
     for &m in members {
@@ -284,7 +310,8 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], pinned: &[b
         region: u32,
         alive: bool,
     }
-    let mut edges: Vec<Edge> = Vec::new();
+    let total: usize = boundaries.iter().map(Vec::len).sum();
+    let mut edges: Vec<Edge> = Vec::with_capacity(total);
     for (r, b) in boundaries.iter().enumerate() {
         edges.extend(b.iter().map(|&(a, b)| Edge {
             a,
@@ -293,33 +320,26 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], pinned: &[b
             alive: true,
         }));
     }
-    // Indexed by vertex: every boundary vertex is a welded position, and a table over all of
-    // them is cheaper than hashing each edge end.
-    // Four inline: a vertex where four regions meet (a quad mesh's) needs no allocation, and the
-    // list is no larger than one of two.
-    let mut outgoing: Vec<SmallVec<[u32; 4]>> = vec![SmallVec::new(); positions.len()];
-    let mut incoming: Vec<SmallVec<[u32; 4]>> = vec![SmallVec::new(); positions.len()];
-    for (i, e) in edges.iter().enumerate() {
-        outgoing[e.a as usize].push(i as u32);
-        incoming[e.b as usize].push(i as u32);
-    }
+    // Per vertex, its outgoing and its incoming edges, in edge order: one list each, cut by
+    // vertex (a counting sort), not a small vector per vertex, which spilled to the heap at
+    // every vertex of more than four boundary edges. A vertex's lists only shrink: it is
+    // emptied when dropped, and an incoming edge is replaced by the one rerouted into it.
+    let mut outgoing = Lists::new(positions.len(), edges.iter().map(|e| e.a));
+    let mut incoming = Lists::new(positions.len(), edges.iter().map(|e| e.b));
     let mut work: Vec<u32> = (0..positions.len() as u32)
-        .filter(|&v| !outgoing[v as usize].is_empty() && !pinned[v as usize])
+        .filter(|&v| !outgoing.of(v).is_empty() && !pinned[v as usize])
         .collect();
     while let Some(v) = work.pop() {
-        let (outs, ins) = (&outgoing[v as usize], &incoming[v as usize]);
+        let (outs, ins) = (outgoing.of(v), incoming.of(v));
         if outs.is_empty() || outs.len() != ins.len() {
             continue;
         }
         // Exactly two neighbours, v strictly between them on a line.
-        let mut nbrs: SmallVec<[u32; 2]> = SmallVec::new();
-        for &e in outs.iter() {
-            push_unique(&mut nbrs, edges[e as usize].b);
-        }
-        for &e in ins.iter() {
-            push_unique(&mut nbrs, edges[e as usize].a);
-        }
-        if nbrs.len() != 2 || !between(positions, nbrs[0], v, nbrs[1], delta) {
+        let ends = outs.iter().map(|&e| edges[e as usize].b);
+        let Some(nbrs) = two_distinct(ends.chain(ins.iter().map(|&e| edges[e as usize].a))) else {
+            continue;
+        };
+        if !between(positions, nbrs[0], v, nbrs[1], delta) {
             continue;
         }
         // Pair each incoming x→v with an outgoing v→y of the same region, y ≠ x.
@@ -347,12 +367,10 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], pinned: &[b
             let y = edges[eo as usize].b;
             edges[eo as usize].alive = false;
             edges[ei as usize].b = y;
-            let into_y = &mut incoming[y as usize];
-            into_y.retain(|e| *e != eo);
-            into_y.push(ei);
+            incoming.replace(y, eo, ei);
         }
-        outgoing[v as usize].clear();
-        incoming[v as usize].clear();
+        outgoing.clear(v);
+        incoming.clear(v);
         work.extend(nbrs.into_iter().filter(|&n| !pinned[n as usize]));
     }
     for b in boundaries.iter_mut() {
@@ -363,10 +381,74 @@ fn simplify(positions: &[DVec3], boundaries: &mut [Vec<(u32, u32)>], pinned: &[b
     }
 }
 
-fn push_unique(v: &mut SmallVec<[u32; 2]>, x: u32) {
-    if !v.contains(&x) {
-        v.push(x);
+/// Per vertex, a list of edge indices in one array: `items[start[v]..start[v] + len[v]]`.
+struct Lists {
+    start: Vec<u32>,
+    len: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl Lists {
+    /// The lists of edges `0..` by the vertex `ends` gives each, in edge order.
+    fn new(vertex_count: usize, ends: impl Iterator<Item = u32> + Clone) -> Self {
+        let mut len = vec![0u32; vertex_count];
+        for v in ends.clone() {
+            len[v as usize] += 1;
+        }
+        let mut start = Vec::with_capacity(vertex_count);
+        let mut at = 0u32;
+        for &n in &len {
+            start.push(at);
+            at += n;
+        }
+        let mut items = vec![0u32; at as usize];
+        let mut next = start.clone();
+        for (e, v) in ends.enumerate() {
+            items[next[v as usize] as usize] = e as u32;
+            next[v as usize] += 1;
+        }
+        Lists { start, len, items }
     }
+
+    fn of(&self, v: u32) -> &[u32] {
+        let s = self.start[v as usize] as usize;
+        &self.items[s..s + self.len[v as usize] as usize]
+    }
+
+    fn clear(&mut self, v: u32) {
+        self.len[v as usize] = 0;
+    }
+
+    /// Takes `old` out of `v`'s list and puts `new` at its end.
+    fn replace(&mut self, v: u32, old: u32, new: u32) {
+        let s = self.start[v as usize] as usize;
+        let list = &mut self.items[s..s + self.len[v as usize] as usize];
+        if let Some(k) = list.iter().position(|&e| e == old) {
+            // A short list: shifted by hand (a rotation costs more to set up than to do).
+            for j in k + 1..list.len() {
+                list[j - 1] = list[j];
+            }
+            *list.last_mut().expect("holds old") = new;
+        }
+    }
+}
+
+/// The two values `items` holds, in order of first appearance, when it holds exactly two
+/// (looking no further than a third).
+fn two_distinct(items: impl Iterator<Item = u32>) -> Option<[u32; 2]> {
+    let mut found = [u32::MAX; 2];
+    let mut count = 0;
+    for x in items {
+        if found[..count].contains(&x) {
+            continue;
+        }
+        if count == 2 {
+            return None;
+        }
+        found[count] = x;
+        count += 1;
+    }
+    (count == 2).then_some(found)
 }
 
 /// True when `v` lies within `delta` of the segment `a`–`b` and strictly inside it.

@@ -30,8 +30,7 @@ pub(super) fn drop_thin_shells(mesh: &mut Mesh, delta: f64, filled_from: usize) 
     }
     let mut sets = DisjointSets::new(n);
     for t in &mesh.triangles {
-        sets.union(t[0] as usize, t[1] as usize);
-        sets.union(t[0] as usize, t[2] as usize);
+        sets.union_all(t.map(|v| v as usize));
     }
     // Per shell (by its root vertex): six times the volume about the root, twice the area.
     let mut volume = vec![0.0f64; n];
@@ -115,6 +114,14 @@ pub(super) fn drop_thin_shells(mesh: &mut Mesh, delta: f64, filled_from: usize) 
 /// The length of `v` without squaring its components: a cross product of edges 1e99 long is
 /// 1e198, whose square overflows (and an infinite area would make any shell thin).
 fn length(v: DVec3) -> f64 {
+    // Squared where that neither overflows nor loses digits to underflow (nearly always).
+    let squared = v.length_squared();
+    if squared.is_finite() && squared > LEAST_SQUARED {
+        return squared.sqrt();
+    }
     let m = v.abs().max_element();
     if m == 0.0 { 0.0 } else { m * (v / m).length() }
 }
+
+/// Above this (about 2⁻⁹⁰⁰, far above the subnormals) a squared length keeps every digit.
+const LEAST_SQUARED: f64 = 1.2e-271;
