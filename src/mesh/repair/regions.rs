@@ -15,7 +15,7 @@ type Triangulated = (Vec<(u32, u32)>, Option<Vec<[u32; 3]>>);
 
 /// Rings of one source in one plane, connected through shared edges.
 struct Region {
-    rings: Vec<u32>,
+    rings: SmallVec<[u32; 4]>,
     source: u32,
     normal: DVec3,
 }
@@ -119,7 +119,7 @@ pub(super) fn triangulate_regions(
         for (i, (r, (b, result))) in regions.into_iter().zip(done).enumerate() {
             if failed.binary_search(&i).is_ok() {
                 split.extend(r.rings.iter().map(|&ring| Region {
-                    rings: vec![ring],
+                    rings: smallvec::smallvec![ring],
                     source: r.source,
                     normal: r.normal,
                 }));
@@ -289,7 +289,8 @@ impl Across<'_> {
     /// for the count.
     fn boundary(&self, rings: &[Ring], members: &[u32]) -> Option<Vec<(u32, u32)>> {
         let region = self.region_of[*members.first()? as usize];
-        let mut out = Vec::new();
+        let total = members.iter().map(|&m| rings[m as usize].verts.len()).sum();
+        let mut out = Vec::with_capacity(total);
         for &m in members {
             let verts = &rings[m as usize].verts;
             let first = self.first_half[m as usize] as usize;
