@@ -104,6 +104,13 @@ pub(super) fn close_flat_cracks(
 /// The triangle already in `triangles` that runs exactly against `tri`, if any, and that other
 /// triangles hold by an edge too: a flap on the surface. A lone face's triangles are not flaps
 /// (taken away, the face would vanish, and an open result become an empty one).
+///
+/// Looked for across each of `tri`'s three edges: `owner` keeps one triangle per half-edge, and
+/// a flap's edge on the surface is crowded, often used the same way by a triangle of the
+/// surface too, which `owner` may hold there instead. Asked across that edge alone, the flap
+/// was missed and the fill laid its reverse on it: a sheet and its own reverse, a flat shell
+/// (a cube less itself turned 2e-6° about (0.3, 1, 0.2): a lone sliver of the x = 1 face, 3e-8
+/// wide, hanging by an edge on a wedge's own face there).
 fn flap(
     owner: &FxHashMap<(u32, u32), u32>,
     uses: &FxHashMap<(u32, u32), i32>,
@@ -116,12 +123,13 @@ fn flap(
     if (0..3).all(|k| held(tri[k], tri[(k + 1) % 3]) < 3) {
         return None;
     }
-    let t = *owner.get(&(tri[1], tri[0]))?;
-    let other = triangles[t as usize];
     let reversed = [tri[0], tri[2], tri[1]];
+    let turns = |other: [u32; 3]| {
+        (0..3).any(|k| other == [reversed[k], reversed[(k + 1) % 3], reversed[(k + 2) % 3]])
+    };
     (0..3)
-        .any(|k| other == [reversed[k], reversed[(k + 1) % 3], reversed[(k + 2) % 3]])
-        .then_some(t)
+        .filter_map(|k| owner.get(&(tri[(k + 1) % 3], tri[k])).copied())
+        .find(|&t| turns(triangles[t as usize]))
 }
 
 /// Follows unpaired half-edges from `start` until they come back to its first vertex; `None`

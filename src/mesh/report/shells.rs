@@ -24,6 +24,10 @@ pub(super) fn shells(
     let mut shell_of = vec![NONE; tris.len()];
     let mut out: Vec<ShellReport> = Vec::new();
     let mut boxes: Vec<Aabb> = Vec::new();
+    // Per shell, the volume about its first corner, and about `centre` (see
+    // `ShellReport::volume`: an open shell keeps the latter).
+    let mut origins: Vec<DVec3> = Vec::new();
+    let mut centred: Vec<f64> = Vec::new();
     for t in (0..tris.len()).filter(|&t| usable[t]) {
         let root = tri_sets.find(t);
         if shell_of_root[root] == NONE {
@@ -41,12 +45,16 @@ pub(super) fn shells(
                 needles: 0,
             });
             boxes.push(Aabb::EMPTY);
+            origins.push(mesh.positions[tris[t][0] as usize]);
+            centred.push(0.0);
         }
         let s = shell_of_root[root];
         shell_of[t] = s;
         let [a, b, c] = tris[t].map(|i| mesh.positions[i as usize]);
         out[s].triangles += 1;
-        out[s].volume += (a - centre).dot((b - centre).cross(c - centre));
+        let o = origins[s];
+        out[s].volume += (a - o).dot((b - o).cross(c - o));
+        centred[s] += (a - centre).dot((b - centre).cross(c - centre));
         for p in [a, b, c] {
             boxes[s].grow(p);
         }
@@ -64,7 +72,10 @@ pub(super) fn shells(
     count_edges(table, &shell_of, &mut out);
     count_vertices(tris, usable, &shell_of, &mut out);
 
-    for s in &mut out {
+    for (s, centred) in out.iter_mut().zip(centred) {
+        if !(s.closed && s.oriented) {
+            s.volume = centred;
+        }
         s.volume /= 6.0;
         s.euler_characteristic = s.vertices as i64 - s.edges as i64 + s.triangles as i64;
         let twice_genus = 2 - s.euler_characteristic;
