@@ -549,9 +549,9 @@ fn intersection_with_a_cube_turned_1e_11_degrees_loses_a_third_of_the_solid() {
 /// rad, a line known only to 6e-5 across the face: banded, each was cut on it, a slot thinner
 /// than the weld between them (the box and the bar alone: open, 4 boundary edges), and the
 /// fragments of the box's bottom (cut by the first bar) judged the line apart: they kept
-/// 5.6e-5 more area in the slot than the bar's top. Planes crossing below half the relative tolerance now count as parallel
-/// (`PARALLEL_BELOW`: they part by less than half the tolerance across the region): the faces
-/// touch and go, 0.5453508, closed, 60 triangles.
+/// 5.6e-5 more area in the slot than the bar's top. Planes crossing below half the relative
+/// tolerance now count as parallel (`PARALLEL_BELOW`: they part by less than half the
+/// tolerance across the region): the faces touch and go, 0.5453508, closed, 60 triangles.
 #[test]
 fn union_with_a_box_turned_1e_11_degrees_exceeds_the_sum_of_its_operands() {
     replay_file("union_box_turned_1e-11_bar_and_bar");

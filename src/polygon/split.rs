@@ -6,7 +6,7 @@ use smallvec::SmallVec;
 
 use super::planes::meet;
 use super::{Polygon, Split, UNKNOWN, Vertices};
-use crate::geom::{Plane, Side};
+use crate::geom::{Plane, Side, Tolerance};
 
 impl Polygon {
     /// Where the polygon lies relative to `plane`, vertices within `eps` counting as on it, and
@@ -347,15 +347,17 @@ const ON_BAND_BELOW: f64 = 1e-3;
 /// less than half of `eps` across the region `eps` is relative to (where the operands' boxes
 /// meet), the band `eps / sine` is over twice that region wide, and where two such faces touch
 /// within half of `eps` anywhere there, every vertex of either there lies within `eps` of the
-/// other's plane, so the two operands cannot judge the crossing differently. Within the band they could: the crossing line of planes 10⁻¹³ apart
-/// is known only to a rounding error over the angle, 10⁻¹⁷ / 1.7·10⁻¹³ = 6·10⁻⁵ across the
-/// face, and each fragment of a face cut before judged its corners against it alone. A box
-/// turned 10⁻¹¹° (1.7·10⁻¹³ rad) united with a bar under its bottom face was cut on that line
-/// into a slot thinner than the weld (open, 4 boundary edges), and, the box's bottom already
-/// cut by a third solid, its fragments kept 5.6·10⁻⁵ more area in the slot than the bar's top:
-/// the solid's volume 7·10⁻⁶ above the sum of the operands. At 10⁻¹⁴ (the old bound, a hundredth of the
-/// tolerance) turns of 10⁻¹¹° were banded; turns of 10⁻¹⁰° (1.7·10⁻¹²) still are.
-const PARALLEL_BELOW: f64 = 5e-13;
+/// other's plane, so the two operands cannot judge the crossing differently.
+///
+/// Within the band they could: the crossing line of planes 10⁻¹³ apart is known only to a
+/// rounding error over the angle, 10⁻¹⁷ / 1.7·10⁻¹³ = 6·10⁻⁵ across the face, and each
+/// fragment of a face cut before judged its corners against it alone. A box turned 10⁻¹¹°
+/// (1.7·10⁻¹³ rad) united with a bar under its bottom face was cut on that line into a slot
+/// thinner than the weld (open, 4 boundary edges), and, the box's bottom already cut by a
+/// third solid, its fragments kept 5.6·10⁻⁵ more area in the slot than the bar's top: the
+/// solid's volume 7·10⁻⁶ above the sum of the operands. At 10⁻¹⁴ (the old bound, a hundredth
+/// of the tolerance) turns of 10⁻¹¹° were banded; turns of 10⁻¹⁰° (1.7·10⁻¹²) still are.
+const PARALLEL_BELOW: f64 = Tolerance::RELATIVE / 2.0;
 
 /// Whether a polygon within `eps` of a plane crossing its own at `sine` is coplanar with it
 /// only within the band by the angle (see [`Polygon::split`]).
