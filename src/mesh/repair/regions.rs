@@ -313,8 +313,10 @@ const DISTINCT_BY_PAIRS: usize = 16;
 /// The directed edges of a region's rings that no other ring of it (nor the ring itself, where
 /// a T-junction made a spike `a → b → a`) uses the other way.
 ///
-/// Most regions are a ring or two: the uses are counted in a sorted list, not a hash map, so a
-/// region costs no allocation beyond its edges.
+/// Three ways, cheapest first: a lone ring through distinct corners is its own boundary; else
+/// the edge partners the grouping found say which edges are inner ([`Across::boundary`]);
+/// where some edge has more uses than a pair, the uses are counted in a sorted list (not a
+/// hash map: most regions are a ring or two, so a region costs no allocation beyond its edges).
 fn boundary(rings: &[Ring], members: &[u32], across: &Across) -> Vec<(u32, u32)> {
     // One ring through distinct vertices (most regions apart from a few big ones): no edge is
     // used twice, and a pairwise look at its few corners is cheaper than counting.
@@ -490,13 +492,15 @@ impl Lists {
     fn replace(&mut self, v: u32, old: u32, new: u32) {
         let s = self.start[v as usize] as usize;
         let list = &mut self.items[s..s + self.len[v as usize] as usize];
-        if let Some(k) = list.iter().position(|&e| e == old) {
-            // A short list: shifted by hand (a rotation costs more to set up than to do).
-            for j in k + 1..list.len() {
-                list[j - 1] = list[j];
-            }
-            *list.last_mut().expect("holds old") = new;
+        let k = list
+            .iter()
+            .position(|&e| e == old)
+            .expect("an alive edge is in its end's incoming list");
+        // A short list: shifted by hand (a rotation costs more to set up than to do).
+        for j in k + 1..list.len() {
+            list[j - 1] = list[j];
         }
+        *list.last_mut().expect("holds old") = new;
     }
 }
 
