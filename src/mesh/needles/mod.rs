@@ -73,11 +73,14 @@ const SPECK_MOVE: f64 = 2.0 * MAX_MOVE;
 /// keeps its triangles (by the box's diagonal, every one of them would be a needle).
 pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
     let n = mesh.positions.len();
+    // Positions are checked once each where all are finite (every one is used, as `to_mesh`
+    // leaves them), not once per corner.
+    let all_finite = mesh.positions.iter().all(|p| p.is_finite());
     if mesh
         .triangles
         .iter()
         .flatten()
-        .any(|&i| i as usize >= n || !mesh.positions[i as usize].is_finite())
+        .any(|&i| i as usize >= n || !(all_finite || mesh.positions[i as usize].is_finite()))
     {
         return 0;
     }
