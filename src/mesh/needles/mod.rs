@@ -128,7 +128,21 @@ pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
             continue;
         }
         if let Some(touched) = work.fix(t) {
-            queue.extend(touched.into_iter().filter(|&u| work.is_needle(u)));
+            // An operation changes the neighbours of every corner of the triangles it touched,
+            // so the link condition of needles with a corner there: those are tried again. A
+            // spike whose short edge's ends shared a third neighbour through a vertex of
+            // valence three collapses once a neighbouring needle's collapse removes that vertex.
+            let mut again: Vec<u32> = Vec::new();
+            for u in touched {
+                for v in work.tris[u as usize] {
+                    for &w in &work.around[v as usize] {
+                        if !again.contains(&w) && work.is_needle(w) {
+                            again.push(w);
+                        }
+                    }
+                }
+            }
+            queue.extend(again);
         } else {
             work.drop_tetrahedron(t);
         }
