@@ -19,6 +19,7 @@
 //!    triangles around it. Solids touching along an edge or at a vertex come out as separate
 //!    manifold shells ([`shells`]).
 
+mod buckets;
 mod cracks;
 mod discs;
 mod edges;

@@ -5,6 +5,7 @@ use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::Ring;
+use super::buckets::{Buckets, buckets};
 use super::edges::{sort_by_edge, undirected};
 use crate::geom::is_zero_area;
 use crate::geom::triangulate::{ear_clip_boundary, triangulate_boundary};
@@ -234,7 +235,7 @@ fn edge_partners(rings: &[Ring], vertex_count: usize) -> Vec<u32> {
             owner.push(r as u32);
         }
     }
-    sort_by_edge(&mut keyed, vertex_count);
+    let keyed = sort_by_edge(&keyed, vertex_count).items;
     let mut partner = vec![u32::MAX; owner.len()];
     let mut i = 0;
     while i < keyed.len() {
@@ -307,25 +308,14 @@ impl Across<'_> {
     }
 }
 
-/// The most corners of a lone ring that [`boundary`] checks for repeats pair by pair.
-const DISTINCT_BY_PAIRS: usize = 16;
-
 /// The directed edges of a region's rings that no other ring of it (nor the ring itself, where
 /// a T-junction made a spike `a → b → a`) uses the other way.
 ///
-/// Three ways, cheapest first: a lone ring through distinct corners is its own boundary; else
-/// the edge partners the grouping found say which edges are inner ([`Across::boundary`]);
-/// where some edge has more uses than a pair, the uses are counted in a sorted list (not a
-/// hash map: most regions are a ring or two, so a region costs no allocation beyond its edges).
+/// Two ways: the edge partners the grouping found say which edges are inner
+/// ([`Across::boundary`]); where some edge has more uses than a pair, the uses are counted in a
+/// sorted list (not a hash map: most regions are a ring or two, so a region costs no allocation
+/// beyond its edges).
 fn boundary(rings: &[Ring], members: &[u32], across: &Across) -> Vec<(u32, u32)> {
-    // One ring through distinct vertices (most regions apart from a few big ones): no edge is
-    // used twice, and a pairwise look at its few corners is cheaper than counting.
-    if let [only] = members {
-        let v = &rings[*only as usize].verts;
-        if v.len() <= DISTINCT_BY_PAIRS && (1..v.len()).all(|k| !v[..k].contains(&v[k])) {
-            return ring_edges(v).collect();
-        }
-    }
     if let Some(edges) = across.boundary(rings, members) {
         return edges;
     }
@@ -460,23 +450,16 @@ struct Lists {
 impl Lists {
     /// The lists of edges `0..` by the vertex `ends` gives each, in edge order.
     fn new(vertex_count: usize, ends: impl Iterator<Item = u32> + Clone) -> Self {
-        let mut len = vec![0u32; vertex_count];
-        for v in ends.clone() {
-            len[v as usize] += 1;
+        let Buckets { starts, items } = buckets(
+            vertex_count,
+            ends.enumerate().map(|(e, v)| (v as usize, e as u32)),
+        );
+        let len = starts.windows(2).map(|w| w[1] - w[0]).collect();
+        Lists {
+            start: starts,
+            len,
+            items,
         }
-        let mut start = Vec::with_capacity(vertex_count);
-        let mut at = 0u32;
-        for &n in &len {
-            start.push(at);
-            at += n;
-        }
-        let mut items = vec![0u32; at as usize];
-        let mut next = start.clone();
-        for (e, v) in ends.enumerate() {
-            items[next[v as usize] as usize] = e as u32;
-            next[v as usize] += 1;
-        }
-        Lists { start, len, items }
     }
 
     fn of(&self, v: u32) -> &[u32] {

@@ -211,7 +211,7 @@ fn reversed_edges(
             (keyed.len() as u32) << 1 | u32::from(a > b),
         ));
     }
-    sort_by_edge(&mut keyed, vertex_count);
+    let keyed = sort_by_edge(&keyed, vertex_count).items;
     // Outside edges are numbered past the rings' and need no answer of their own.
     let mut matched = vec![false; total + outside.len()];
     let mut i = 0;
