@@ -8,6 +8,41 @@ pub(super) fn undirected(a: u32, b: u32) -> u64 {
     ((a.min(b) as u64) << 32) | a.max(b) as u64
 }
 
+/// A ring edge's partner (see [`run_partners`]) where its edge has other uses than one ring's
+/// each way, or one alone: three rings along it, or two the same way.
+pub(super) const CROWDED: u32 = u32::MAX;
+
+/// A ring edge's partner where no other ring edge runs along it, either way.
+pub(super) const ONLY_USE: u32 = u32::MAX - 1;
+
+/// A ring edge's partner not yet known: its edge is to be sorted (again).
+pub(super) const UNKNOWN: u32 = u32::MAX - 2;
+
+/// Sets the partner of each use of one edge, `run` (a run of equal keys from [`sort_by_edge`],
+/// payloads `i << 1 | reversed`; the use's half-edge is `half(i)`, its ring `ring(i)`): the
+/// ring across where exactly one ring uses the edge each way, [`ONLY_USE`] where it is the
+/// edge's only use, [`CROWDED`] otherwise.
+#[inline]
+pub(super) fn run_partners(
+    run: &[(u64, u32)],
+    half: impl Fn(u32) -> usize,
+    ring: impl Fn(u32) -> u32,
+    partner: &mut [u32],
+) {
+    match *run {
+        [(_, x), (_, y)] if (x ^ y) & 1 == 1 => {
+            partner[half(x >> 1)] = ring(y >> 1);
+            partner[half(y >> 1)] = ring(x >> 1);
+        }
+        [(_, x)] => partner[half(x >> 1)] = ONLY_USE,
+        _ => {
+            for &(_, h) in run {
+                partner[half(h >> 1)] = CROWDED;
+            }
+        }
+    }
+}
+
 /// Runs of at most this many entries (a vertex's edges, usually about six) are sorted by
 /// insertion.
 const INSERTION_RUN: usize = 16;
