@@ -31,22 +31,20 @@ impl DisjointSets {
         let mut root = self.find(first);
         for &x in &items[1..] {
             let other = self.find(x);
-            if root < other {
-                self.parent[other] = root;
-            } else {
-                self.parent[root] = other;
-                root = other;
-            }
+            root = self.link(root, other);
         }
     }
 
     /// Joins the sets of `a` and `b`; the smaller root wins, so a set's root is its first member.
     pub fn union(&mut self, a: usize, b: usize) {
         let (ra, rb) = (self.find(a), self.find(b));
-        if ra < rb {
-            self.parent[rb] = ra;
-        } else {
-            self.parent[ra] = rb;
-        }
+        self.link(ra, rb);
+    }
+
+    /// Joins the sets of roots `ra` and `rb` under the smaller; returns it.
+    fn link(&mut self, ra: usize, rb: usize) -> usize {
+        let (root, child) = if ra < rb { (ra, rb) } else { (rb, ra) };
+        self.parent[child] = root;
+        root
     }
 }

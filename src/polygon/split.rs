@@ -6,7 +6,7 @@ use smallvec::SmallVec;
 
 use super::planes::meet;
 use super::{Polygon, Split, UNKNOWN, Vertices};
-use crate::geom::{Plane, Side};
+use crate::geom::{Plane, Side, Tolerance};
 
 impl Polygon {
     /// Where the polygon lies relative to `plane`, vertices within `eps` counting as on it, and
@@ -60,7 +60,8 @@ impl Polygon {
     /// that far from the line where the planes cross while the other operand, cut along that
     /// line, leaves a slit between (10⁻⁹° on a box: a band 0.6 wide). So too for a polygon all
     /// of whose vertices lie within `eps` of a plane crossing its own at a sine of at least
-    /// 10⁻¹⁴ (`PARALLEL_BELOW`; below it the planes are parallel but for rounding): it is
+    /// 5·10⁻¹³ (`PARALLEL_BELOW`; below it the planes part by less than half the tolerance
+    /// across the region it is relative to, and count as parallel): it is
     /// coplanar only if they all lie within the band.
     /// Coplanar by `eps` alone, a small face (a 0.125 cube's, on a box turned 10⁻¹⁰°) went
     /// whole to the coplanar side while the other operand's larger face, reaching beyond `eps`,
@@ -336,13 +337,27 @@ struct CutEdge<'a> {
 /// less than a factor of a thousand, and ordinary crossings keep the tolerance they always had.
 const ON_BAND_BELOW: f64 = 1e-3;
 
-/// Below this sine of the angle between a polygon's plane and a cutting plane, the two are
-/// parallel but for rounding (1e-14: they part by a hundredth of the default tolerance across
-/// the region it is relative to), and a polygon within `eps` of the plane is coplanar with it
-/// as for two exactly parallel planes, the same for every polygon on either (faces a
-/// tolerance apart, flush at a tolerance the caller asked for; translated copies). Between
-/// this and [`ON_BAND_BELOW`] it is coplanar only within the band by the angle.
-const PARALLEL_BELOW: f64 = 1e-14;
+/// Below this sine of the angle between a polygon's plane and a cutting plane, the two count
+/// as parallel, and a polygon within `eps` of the plane is coplanar with it as for two exactly
+/// parallel planes, the same for every polygon on either (faces a tolerance apart, flush at a
+/// tolerance the caller asked for; translated copies). Between this and [`ON_BAND_BELOW`] it
+/// is coplanar only within the band by the angle.
+///
+/// Half the relative tolerance (`Tolerance::RELATIVE`, 10⁻¹²): below it the planes part by
+/// less than half of `eps` across the region `eps` is relative to (where the operands' boxes
+/// meet), the band `eps / sine` is over twice that region wide, and where two such faces touch
+/// within half of `eps` anywhere there, every vertex of either there lies within `eps` of the
+/// other's plane, so the two operands cannot judge the crossing differently.
+///
+/// Within the band they could: the crossing line of planes 10⁻¹³ apart is known only to a
+/// rounding error over the angle, 10⁻¹⁷ / 1.7·10⁻¹³ = 6·10⁻⁵ across the face, and each
+/// fragment of a face cut before judged its corners against it alone. A box turned 10⁻¹¹°
+/// (1.7·10⁻¹³ rad) united with a bar under its bottom face was cut on that line into a slot
+/// thinner than the weld (open, 4 boundary edges), and, the box's bottom already cut by a
+/// third solid, its fragments kept 5.6·10⁻⁵ more area in the slot than the bar's top: the
+/// solid's volume 7·10⁻⁶ above the sum of the operands. At 10⁻¹⁴ (the old bound, a hundredth
+/// of the tolerance) turns of 10⁻¹¹° were banded; turns of 10⁻¹⁰° (1.7·10⁻¹²) still are.
+const PARALLEL_BELOW: f64 = Tolerance::RELATIVE / 2.0;
 
 /// Whether a polygon within `eps` of a plane crossing its own at `sine` is coplanar with it
 /// only within the band by the angle (see [`Polygon::split`]).

@@ -73,11 +73,14 @@ const SPECK_MOVE: f64 = 2.0 * MAX_MOVE;
 /// keeps its triangles (by the box's diagonal, every one of them would be a needle).
 pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
     let n = mesh.positions.len();
+    // Positions are checked once each where all are finite (every one is used, as `to_mesh`
+    // leaves them), not once per corner.
+    let all_finite = mesh.positions.iter().all(|p| p.is_finite());
     if mesh
         .triangles
         .iter()
         .flatten()
-        .any(|&i| i as usize >= n || !mesh.positions[i as usize].is_finite())
+        .any(|&i| i as usize >= n || !(all_finite || mesh.positions[i as usize].is_finite()))
     {
         return 0;
     }
@@ -125,7 +128,21 @@ pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
             continue;
         }
         if let Some(touched) = work.fix(t) {
-            queue.extend(touched.into_iter().filter(|&u| work.is_needle(u)));
+            // An operation changes the neighbours of every corner of the triangles it touched,
+            // so the link condition of needles with a corner there: those are tried again. A
+            // spike whose short edge's ends shared a third neighbour through a vertex of
+            // valence three collapses once a neighbouring needle's collapse removes that vertex.
+            let mut again: Vec<u32> = Vec::new();
+            for u in touched {
+                for v in work.tris[u as usize] {
+                    for &w in &work.around[v as usize] {
+                        if !again.contains(&w) && work.is_needle(w) {
+                            again.push(w);
+                        }
+                    }
+                }
+            }
+            queue.extend(again);
         } else {
             work.drop_tetrahedron(t);
         }

@@ -38,8 +38,7 @@ impl Work {
         let n = mesh.positions.len();
         let mut sets = DisjointSets::new(n);
         for t in &mesh.triangles {
-            sets.union(t[0] as usize, t[1] as usize);
-            sets.union(t[0] as usize, t[2] as usize);
+            sets.union_all(t.map(|v| v as usize));
         }
         let mut shell = vec![u32::MAX; n];
         let mut boxes: Vec<Aabb> = Vec::new();

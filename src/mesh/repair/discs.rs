@@ -86,10 +86,10 @@ impl Links {
 /// Whether the directed edges `link` start at distinct vertices and form one cycle; if so, they
 /// are left in the cycle's order.
 ///
-/// Walks from the first edge, each step to the first edge starting where the last one ended.
-/// Where that comes back to the first edge's start after exactly `link.len()` steps, the
-/// edges met are all distinct (a repeat would loop without coming back) and so are their starts
-/// (the first edge with a start is the only one ever taken from there): every edge, once.
+/// Walks from the first edge, each step to the first edge (after the first) starting where the
+/// last one ended, and fails where that edge was walked already (a start met twice), where none
+/// starts there, or where the walk is back at the first edge's start early. Where it comes back
+/// after exactly `link.len()` steps, every edge was met once, each from a start of its own.
 /// A long link (a cone's apex, a cylinder cap's centre) is sorted by start first, so the walk
 /// costs `O(n log n)` instead of `O(n²)`.
 fn one_cycle(link: &mut [(u32, u32)]) -> bool {
@@ -99,25 +99,22 @@ fn one_cycle(link: &mut [(u32, u32)]) -> bool {
     if link.len() > SORTED_ABOVE {
         return sorted_cycle(link);
     }
-    let mut order: smallvec::SmallVec<[(u32, u32); SORTED_ABOVE]> = smallvec::smallvec![first];
+    // In place: step `i` finds the edge starting where the last one ended and swaps it to `i`.
+    // The first such edge lying before `i` (already walked) means a start met twice.
     let mut at = first.1;
-    while at != first.0 {
-        match link.iter().find(|e| e.0 == at) {
-            Some(&e) => {
-                order.push(e);
-                at = e.1;
-            }
-            None => return false,
-        }
-        if order.len() > link.len() {
+    for i in 1..link.len() {
+        if at == first.0 {
             return false;
         }
+        match (1..link.len()).find(|&j| link[j].0 == at) {
+            Some(j) if j >= i => {
+                link.swap(i, j);
+                at = link[i].1;
+            }
+            _ => return false,
+        }
     }
-    if order.len() != link.len() {
-        return false;
-    }
-    link.copy_from_slice(&order);
-    true
+    at == first.0
 }
 
 /// [`one_cycle`] for a long link: sorted by start, a repeated start is seen side by side, and

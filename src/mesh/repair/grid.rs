@@ -38,17 +38,22 @@ pub(super) struct Grid<'p> {
     origin: DVec3,
     inv: f64,
     cell: f64,
-    /// Per occupied cell key, its range in `items` (a sparse grid; empty when dense).
-    cells: FxHashMap<u64, (u32, u32)>,
-    /// A dense grid, where the points' extent holds few cells beside the points
-    /// ([`DENSE_CELLS_PER_POINT`]): cell `(x, y, z)`'s points are
-    /// `items[starts[c]..starts[c + 1]]` for `c = (x · dims[1] + y) · dims[2] + z`. Looking a
-    /// cell up is then an index, not a hash (most of the search's time was the lookups).
-    starts: Vec<u32>,
-    dims: [u64; 3],
+    cells: Cells,
+    /// The points' indices, grouped by cell.
     items: Vec<u32>,
     /// For edges cut into more than [`MOST_PIECES`] pieces: a tree of the points, built on first need.
     tree: std::sync::OnceLock<Bvh>,
+}
+
+/// Where each cell's points lie in [`Grid::items`].
+enum Cells {
+    /// Per occupied cell key, its range in `items`.
+    Sparse(FxHashMap<u64, (u32, u32)>),
+    /// Every cell, where the points' extent holds few cells beside the points
+    /// ([`DENSE_CELLS_PER_POINT`]): cell `(x, y, z)`'s points are
+    /// `items[starts[c]..starts[c + 1]]` for `c = (x · dims[1] + y) · dims[2] + z`. Looking a
+    /// cell up is then an index, not a hash (most of the search's time was the lookups).
+    Dense { starts: Vec<u32>, dims: [u64; 3] },
 }
 
 impl<'p> Grid<'p> {
@@ -74,9 +79,7 @@ impl<'p> Grid<'p> {
             origin: if spots.is_empty() { DVec3::ZERO } else { lo },
             inv: 1.0 / cell,
             cell,
-            cells: FxHashMap::default(),
-            starts: Vec::new(),
-            dims: [0; 3],
+            cells: Cells::Sparse(FxHashMap::default()),
             items: Vec::with_capacity(spots.len()),
             tree: std::sync::OnceLock::new(),
         };
@@ -85,10 +88,9 @@ impl<'p> Grid<'p> {
             let dims = top.map(|t| t + 1);
             let total = dims[0].saturating_mul(dims[1]).saturating_mul(dims[2]);
             if total <= DENSE_CELLS_PER_POINT * spots.len() as u64 + DENSE_CELLS_ALWAYS {
-                grid.dims = dims;
                 let linear: Vec<u32> = spots
                     .iter()
-                    .map(|&p| grid.linear(grid.index(p)) as u32)
+                    .map(|&p| linear(dims, grid.index(p)) as u32)
                     .collect();
                 let mut starts = vec![0u32; total as usize + 1];
                 for &c in &linear {
@@ -103,7 +105,7 @@ impl<'p> Grid<'p> {
                     grid.items[next[c as usize] as usize] = i as u32;
                     next[c as usize] += 1;
                 }
-                grid.starts = starts;
+                grid.cells = Cells::Dense { starts, dims };
                 return grid;
             }
         }
@@ -116,35 +118,33 @@ impl<'p> Grid<'p> {
             })
             .collect();
         keyed.sort_unstable();
-        grid.cells.reserve(keyed.len());
+        let mut cells = FxHashMap::default();
+        cells.reserve(keyed.len());
         let mut i = 0;
         while i < keyed.len() {
             let mut j = i + 1;
             while j < keyed.len() && keyed[j].0 == keyed[i].0 {
                 j += 1;
             }
-            grid.cells.insert(keyed[i].0, (i as u32, j as u32));
+            cells.insert(keyed[i].0, (i as u32, j as u32));
             i = j;
         }
         grid.items.extend(keyed.iter().map(|k| k.1));
+        grid.cells = Cells::Sparse(cells);
         grid
-    }
-
-    /// The dense grid's index of cell `[x, y, z]` (each below `dims`).
-    fn linear(&self, [x, y, z]: [u64; 3]) -> u64 {
-        (x * self.dims[1] + y) * self.dims[2] + z
     }
 
     /// The points in cell `[x, y, z]`.
     fn in_cell(&self, c: [u64; 3]) -> &[u32] {
-        if self.starts.is_empty() {
-            match self.cells.get(&pack(c[0], c[1], c[2])) {
+        match &self.cells {
+            Cells::Sparse(cells) => match cells.get(&pack(c[0], c[1], c[2])) {
                 Some(&(s, e)) => &self.items[s as usize..e as usize],
                 None => &[],
+            },
+            Cells::Dense { starts, dims } => {
+                let at = linear(*dims, c) as usize;
+                &self.items[starts[at] as usize..starts[at + 1] as usize]
             }
-        } else {
-            let at = self.linear(c) as usize;
-            &self.items[self.starts[at] as usize..self.starts[at + 1] as usize]
         }
     }
 
@@ -189,10 +189,9 @@ impl<'p> Grid<'p> {
         let mut from = a;
         let mut seen: smallvec::SmallVec<[u64; 16]> = smallvec::SmallVec::new();
         // A dense grid's cells end at `dims`; a sparse one's at the clamp.
-        let last = if self.starts.is_empty() {
-            [u64::MAX; 3]
-        } else {
-            self.dims.map(|d| d - 1)
+        let last = match &self.cells {
+            Cells::Sparse(_) => [u64::MAX; 3],
+            Cells::Dense { dims, .. } => dims.map(|d| d - 1),
         };
         for k in 0..n {
             let to = if k + 1 == n {
@@ -225,6 +224,12 @@ impl<'p> Grid<'p> {
     }
 }
 
+/// The dense grid's index of cell `[x, y, z]` (each below `dims`).
+fn linear(dims: [u64; 3], [x, y, z]: [u64; 3]) -> u64 {
+    (x * dims[1] + y) * dims[2] + z
+}
+
+/// A sparse grid's key of cell `(x, y, z)` (each below [`AXIS_CELLS`]).
 fn pack(x: u64, y: u64, z: u64) -> u64 {
     x << 42 | y << 21 | z
 }
@@ -233,7 +238,7 @@ fn pack(x: u64, y: u64, z: u64) -> u64 {
 mod tests {
     use glam::DVec3;
 
-    use super::Grid;
+    use super::{Cells, Grid};
 
     /// Every point within reach of a segment is handed over, by the cells (short segments, a
     /// small reach; of a sparse grid and of a dense one) and by the tree (long segments, or a
@@ -254,7 +259,7 @@ mod tests {
         // Cells 0.01 wide: a sparse grid (10⁹ cells); 0.5 wide: a dense one (8,000 cells).
         for (cell, wide, dense) in [(0.01, 0.5, false), (0.5, 0.2, true)] {
             let grid = Grid::new(&spots, cell);
-            assert_eq!(!grid.starts.is_empty(), dense);
+            assert_eq!(matches!(grid.cells, Cells::Dense { .. }), dense);
             for _ in 0..200 {
                 // Segments from inside the points' box to up to 5 beyond it.
                 let a = DVec3::new(next(), next(), next()) * 10.0;

@@ -15,7 +15,7 @@ type Triangulated = (Vec<(u32, u32)>, Option<Vec<[u32; 3]>>);
 
 /// Rings of one source in one plane, connected through shared edges.
 struct Region {
-    rings: Vec<u32>,
+    rings: SmallVec<[u32; 4]>,
     source: u32,
     normal: DVec3,
 }
@@ -29,7 +29,16 @@ pub(super) fn triangulate_regions(
     delta: f64,
     pins: &[bool],
 ) -> (Vec<[u32; 3]>, Vec<u32>) {
-    let mut regions = group(positions, rings, polygons, delta);
+    let partner = edge_partners(rings, positions.len());
+    let mut regions = group(positions, rings, polygons, delta, &partner);
+    // Where each ring's half-edges start in `partner`.
+    let mut first_half: Vec<u32> = Vec::with_capacity(rings.len());
+    let mut halves = 0u32;
+    for ring in rings {
+        first_half.push(halves);
+        halves += ring.verts.len() as u32;
+    }
+    let mut region_of: Vec<u32> = vec![0; rings.len()];
     // Per region kept whole from the previous round, its simplified boundary and what that
     // triangulated to: a crack-heavy pass splits a few regions per round and redoes the rest,
     // whose boundaries mostly come out the same (triangulating them again was most of the
@@ -50,12 +59,22 @@ pub(super) fn triangulate_regions(
                 pinned[v as usize] = true;
             }
         }
+        for (i, r) in regions.iter().enumerate() {
+            for &m in &r.rings {
+                region_of[m as usize] = i as u32;
+            }
+        }
+        let across = Across {
+            partner: &partner,
+            first_half: &first_half,
+            region_of: &region_of,
+        };
         let mut boundaries: Vec<Vec<(u32, u32)>> = regions
             .par_iter()
             .zip(&lone)
             .map(|(r, l)| match l {
                 Some(_) => Vec::new(),
-                None => boundary(rings, &r.rings),
+                None => boundary(rings, &r.rings, &across),
             })
             .collect();
         simplify(positions, &mut boundaries, &pinned, delta);
@@ -100,7 +119,7 @@ pub(super) fn triangulate_regions(
         for (i, (r, (b, result))) in regions.into_iter().zip(done).enumerate() {
             if failed.binary_search(&i).is_ok() {
                 split.extend(r.rings.iter().map(|&ring| Region {
-                    rings: vec![ring],
+                    rings: smallvec::smallvec![ring],
                     source: r.source,
                     normal: r.normal,
                 }));
@@ -119,8 +138,13 @@ pub(super) fn triangulate_regions(
 /// first ring's): a region is retriangulated in that plane, so no chain of small steps may
 /// carry it across a gentle fold. Smaller groups join larger ones, each of their vertices
 /// checked once per join, so `O(n log n)` vertex checks in all.
-fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) -> Vec<Region> {
-    let partner = edge_partners(rings, positions.len());
+fn group(
+    positions: &[DVec3],
+    rings: &[Ring],
+    polygons: &[Polygon],
+    delta: f64,
+    partner: &[u32],
+) -> Vec<Region> {
     let plane_of = |r: u32| polygons[rings[r as usize].polygon as usize].plane();
     let source_of = |r: u32| polygons[rings[r as usize].polygon as usize].source();
     // group[r]: the group ring r belongs to, named by its first ring, which gives the plane
@@ -135,7 +159,7 @@ fn group(positions: &[DVec3], rings: &[Ring], polygons: &[Polygon], delta: f64) 
     for (r, ring) in rings.iter().enumerate() {
         let edges = ring.verts.len();
         for &other in &partner[half..half + edges] {
-            if other == u32::MAX {
+            if other >= ONLY_USE {
                 continue;
             }
             let (gx, gy) = (group[r], group[other as usize]);
@@ -190,9 +214,13 @@ fn chain(next: &[u32], first: u32) -> impl Iterator<Item = u32> + '_ {
     })
 }
 
+/// [`edge_partners`]' answer for an edge no other ring edge runs along, either way.
+const ONLY_USE: u32 = u32::MAX - 1;
+
 /// For each ring edge, in ring order and edge order, the ring across it when exactly one ring
-/// uses the edge each way (`u32::MAX` otherwise). One sort of the half-edges by undirected
-/// edge, not a hash map of edge uses: a boolean's soup has 10⁵ of them.
+/// uses the edge each way, [`ONLY_USE`] when it is the edge's only use, `u32::MAX` otherwise.
+/// One sort of the half-edges by undirected edge, not a hash map of edge uses: a boolean's
+/// soup has 10⁵ of them.
 fn edge_partners(rings: &[Ring], vertex_count: usize) -> Vec<u32> {
     // (undirected edge, half-edge index << 1 | reversed): sorting puts each edge's uses together.
     let mut keyed: Vec<(u64, u32)> = Vec::with_capacity(rings.len() * 4);
@@ -220,6 +248,8 @@ fn edge_partners(rings: &[Ring], vertex_count: usize) -> Vec<u32> {
             let (hx, hy) = ((x >> 1) as usize, (y >> 1) as usize);
             partner[hx] = owner[hy];
             partner[hy] = owner[hx];
+        } else if let [(_, x)] = keyed[i..j] {
+            partner[(x >> 1) as usize] = ONLY_USE;
         }
         i = j;
     }
@@ -243,15 +273,51 @@ fn ring_edges(v: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {
     (0..v.len()).map(move |k| (v[k], v[(k + 1) % v.len()]))
 }
 
+/// What the regions know of the ring edges: which ring lies across each ([`edge_partners`]),
+/// and each ring's region.
+struct Across<'a> {
+    partner: &'a [u32],
+    /// Ring `r`'s edges are `partner[first_half[r]..]`, in ring order.
+    first_half: &'a [u32],
+    region_of: &'a [u32],
+}
+
+impl Across<'_> {
+    /// [`boundary`] from the partners, where every edge of the region has its own reverse in
+    /// one ring or no other use: an edge is inner when the ring across is in the region too.
+    /// `None` where some edge is used otherwise (three rings along it, a ring with it twice),
+    /// for the count.
+    fn boundary(&self, rings: &[Ring], members: &[u32]) -> Option<Vec<(u32, u32)>> {
+        let region = self.region_of[*members.first()? as usize];
+        let total = members.iter().map(|&m| rings[m as usize].verts.len()).sum();
+        let mut out = Vec::with_capacity(total);
+        for &m in members {
+            let verts = &rings[m as usize].verts;
+            let first = self.first_half[m as usize] as usize;
+            for (k, edge) in ring_edges(verts).enumerate() {
+                match self.partner[first + k] {
+                    u32::MAX => return None,
+                    ONLY_USE => out.push(edge),
+                    other if self.region_of[other as usize] != region => out.push(edge),
+                    _ => {}
+                }
+            }
+        }
+        Some(out)
+    }
+}
+
 /// The most corners of a lone ring that [`boundary`] checks for repeats pair by pair.
 const DISTINCT_BY_PAIRS: usize = 16;
 
 /// The directed edges of a region's rings that no other ring of it (nor the ring itself, where
 /// a T-junction made a spike `a → b → a`) uses the other way.
 ///
-/// Most regions are a ring or two: the uses are counted in a sorted list, not a hash map, so a
-/// region costs no allocation beyond its edges.
-fn boundary(rings: &[Ring], members: &[u32]) -> Vec<(u32, u32)> {
+/// Three ways, cheapest first: a lone ring through distinct corners is its own boundary; else
+/// the edge partners the grouping found say which edges are inner ([`Across::boundary`]);
+/// where some edge has more uses than a pair, the uses are counted in a sorted list (not a
+/// hash map: most regions are a ring or two, so a region costs no allocation beyond its edges).
+fn boundary(rings: &[Ring], members: &[u32], across: &Across) -> Vec<(u32, u32)> {
     // One ring through distinct vertices (most regions apart from a few big ones): no edge is
     // used twice, and a pairwise look at its few corners is cheaper than counting.
     if let [only] = members {
@@ -259,6 +325,9 @@ fn boundary(rings: &[Ring], members: &[u32]) -> Vec<(u32, u32)> {
         if v.len() <= DISTINCT_BY_PAIRS && (1..v.len()).all(|k| !v[..k].contains(&v[k])) {
             return ring_edges(v).collect();
         }
+    }
+    if let Some(edges) = across.boundary(rings, members) {
+        return edges;
     }
     let total = members.iter().map(|&m| rings[m as usize].verts.len()).sum();
     let mut edges: Vec<(u32, u32)> = Vec::with_capacity(total);
@@ -423,13 +492,15 @@ impl Lists {
     fn replace(&mut self, v: u32, old: u32, new: u32) {
         let s = self.start[v as usize] as usize;
         let list = &mut self.items[s..s + self.len[v as usize] as usize];
-        if let Some(k) = list.iter().position(|&e| e == old) {
-            // A short list: shifted by hand (a rotation costs more to set up than to do).
-            for j in k + 1..list.len() {
-                list[j - 1] = list[j];
-            }
-            *list.last_mut().expect("holds old") = new;
+        let k = list
+            .iter()
+            .position(|&e| e == old)
+            .expect("an alive edge is in its end's incoming list");
+        // A short list: shifted by hand (a rotation costs more to set up than to do).
+        for j in k + 1..list.len() {
+            list[j - 1] = list[j];
         }
+        *list.last_mut().expect("holds old") = new;
     }
 }
 

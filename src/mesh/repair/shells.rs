@@ -136,22 +136,29 @@ fn split_around_discs(
             }
         }
     }
-    // One output vertex per fan, numbered in order of first use.
-    let mut renumber: Vec<u32> = vec![u32::MAX; n];
+    // One output vertex per fan, numbered in order of first use: a disc vertex's corners are
+    // one fan (numbered by vertex), the others' by their fan's first corner.
+    let mut by_vertex: Vec<u32> = vec![u32::MAX; positions.len()];
+    let mut renumber: Vec<u32> = if corner_vertex.is_empty() {
+        Vec::new()
+    } else {
+        vec![u32::MAX; n]
+    };
     let mut out_positions = Vec::with_capacity(positions.len());
     let mut out_triangles = vec![[0u32; 3]; triangles.len()];
-    for ((tri, out), fans) in triangles
-        .iter()
-        .zip(&mut out_triangles)
-        .zip(corner_vertex.chunks_exact(3))
-    {
+    for (t, (tri, out)) in triangles.iter().zip(&mut out_triangles).enumerate() {
         for k in 0..3 {
-            let fan = fans[k] as usize;
-            if renumber[fan] == u32::MAX {
-                renumber[fan] = out_positions.len() as u32;
-                out_positions.push(positions[tri[k] as usize]);
+            let v = tri[k] as usize;
+            let slot = if disc[v] {
+                &mut by_vertex[v]
+            } else {
+                &mut renumber[corner_vertex[3 * t + k] as usize]
+            };
+            if *slot == u32::MAX {
+                *slot = out_positions.len() as u32;
+                out_positions.push(positions[v]);
             }
-            out[k] = renumber[fan];
+            out[k] = *slot;
         }
     }
     // Only half-edges with a twin to find can lack one; listed in half-edge order.
@@ -210,44 +217,36 @@ pub(crate) fn split_touching(mesh: &Mesh) -> Option<Mesh> {
     (split.positions.len() > used && cracks.is_empty()).then_some(split)
 }
 
-/// For each corner (half-edge `h` sits at vertex `from(h)`), the fan it belongs to, named by
-/// its first corner. Around a vertex, the corner of the previous half-edge's twin continues the
-/// fan; around a `disc` vertex all its corners are one fan (see [`one_disc`]).
+/// For each corner (half-edge `h` sits at vertex `from(h)`) not at a `disc` vertex, the fan it
+/// belongs to, named by a corner of it (`u32::MAX` at disc vertices, whose corners are all one
+/// fan: see [`one_disc`]; an empty list where every vertex is a disc). Around a vertex, the
+/// corner of the previous half-edge's twin continues the fan.
 fn fan_vertices(triangles: &[[u32; 3]], twin: &[u32], disc: &[bool]) -> Vec<u32> {
     let n = triangles.len() * 3;
-    let mut fan = vec![u32::MAX; n];
-    let mut first = vec![u32::MAX; disc.len()];
-    let mut split = false;
+    if triangles.iter().flatten().all(|&v| disc[v as usize]) {
+        return Vec::new();
+    }
+    let mut fans = DisjointSets::new(n);
     for (h, &v) in triangles.iter().flatten().enumerate() {
-        let v = v as usize;
-        if disc[v] {
-            if first[v] == u32::MAX {
-                first[v] = h as u32;
-            }
-            fan[h] = first[v];
-        } else {
-            split = true;
+        if disc[v as usize] {
+            continue;
+        }
+        let prev = h / 3 * 3 + (h % 3 + 2) % 3;
+        let t = twin[prev];
+        if t != u32::MAX {
+            fans.union(h, t as usize);
         }
     }
-    if split {
-        let mut fans = DisjointSets::new(n);
-        for (h, &f) in fan.iter().enumerate() {
-            if f != u32::MAX {
-                continue;
+    let corners = triangles.iter().flatten().enumerate();
+    corners
+        .map(|(h, &v)| {
+            if disc[v as usize] {
+                u32::MAX
+            } else {
+                fans.find(h) as u32
             }
-            let prev = h / 3 * 3 + (h % 3 + 2) % 3;
-            let t = twin[prev];
-            if t != u32::MAX {
-                fans.union(h, t as usize);
-            }
-        }
-        for (h, f) in fan.iter_mut().enumerate() {
-            if *f == u32::MAX {
-                *f = fans.find(h) as u32;
-            }
-        }
-    }
-    fan
+        })
+        .collect()
 }
 
 /// For each crowded edge, how many of its half-edges share both output vertices with another

@@ -41,22 +41,24 @@ pub(super) fn drop_thin_shells(mesh: &mut Mesh, delta: f64, filled_from: usize) 
         .map(|t| sets.find(t[0] as usize))
         .collect();
     let mut filled = vec![false; n];
+    let mut is_root = vec![false; n];
     for (i, (t, &r)) in mesh.triangles.iter().zip(&root).enumerate() {
         let o = mesh.positions[r];
         let [a, b, c] = t.map(|i| mesh.positions[i as usize] - o);
         volume[r] += a.dot(b.cross(c));
         area[r] += length((b - a).cross(c - a));
         filled[r] |= i >= filled_from;
+        is_root[r] = true;
     }
     // Mean thickness 2V / A = (6V / 3) / (2A / 2) = (2/3)·(6V) / (2A).
     let flat = |r: usize| !filled[r] && 2.0 * volume[r].abs() / 3.0 <= delta * area[r];
     // Whether every edge has its reverse is asked only of the flat shells (most meshes have
-    // none): a hash of every edge was as much as the shell split itself. An edge's reverse
-    // shares its vertices, so it lies in the same shell.
-    let candidate: Vec<bool> = root.iter().map(|&r| flat(r)).collect();
-    if !candidate.iter().any(|&c| c) {
+    // none, asked once per shell): a hash of every edge was as much as the shell split itself.
+    // An edge's reverse shares its vertices, so it lies in the same shell.
+    if !(0..n).any(|r| is_root[r] && flat(r)) {
         return 0;
     }
+    let candidate: Vec<bool> = root.iter().map(|&r| flat(r)).collect();
     let edges: HashSet<(u32, u32), FxBuild> = mesh
         .triangles
         .iter()
