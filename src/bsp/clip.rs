@@ -110,13 +110,6 @@ impl Tree {
             loop {
                 let i = match w.link {
                     Link::Leaf(label) => {
-                        if std::env::var_os("BSP_DBG").is_some() {
-                            let c = w.polygon.centroid() + w.side * (2.0 * eps);
-                            let truth = surface.label(c);
-                            if truth != label {
-                                eprintln!("LEAF mismatch: leaf {label:?} truth {truth:?} coplanar {} diag {:e}", w.coplanar, w.bbox.diagonal());
-                            }
-                        }
                         if label == keep {
                             out.push(Clipped {
                                 polygon: w.polygon,
@@ -139,16 +132,7 @@ impl Tree {
                         && spans_axis_plane(&w.bbox, &node.plane, eps)
                         && !self.near_surface(w.link, &w.bbox, margin));
                 if whole {
-                    let got = self.label_whole(&w, surface, labelled, last);
-                    if std::env::var_os("BSP_DBG").is_some() {
-                        let c = w.polygon.centroid() + w.side * (2.0 * eps);
-                        let truth = surface.label(c);
-                        if truth != got {
-                            let stub = matches!(node.kind, Kind::Stub { .. });
-                            eprintln!("WHOLE mismatch: got {got:?} truth {truth:?} coplanar {} at_stub {stub} is_face {is_face} diag {:e} located {:?}", w.coplanar, w.bbox.diagonal(), self.locate(w.link, w.polygon.centroid()));
-                        }
-                    }
-                    if got == keep {
+                    if self.label_whole(&w, surface, labelled, last) == keep {
                         out.push(Clipped {
                             polygon: w.polygon,
                             coplanar: w.coplanar,
@@ -214,7 +198,7 @@ impl Tree {
         &self,
         w: &Work,
         surface: &Surface,
-        labelled: &mut FxHashMap<u32, (DVec3, Label)>,
+        labelled: &mut FxHashMap<u32, (DVec3, Label, bool)>,
         last: &mut Option<(DVec3, Label)>,
     ) -> Label {
         let c = w.polygon.centroid();
@@ -231,21 +215,16 @@ impl Tree {
                 .locate_stub(c)
                 .is_some_and(|(at, d)| at == stub && d > (CLEAR + 2.0) * self.eps);
             let local = self.stub_polygons(stub);
-            // Only clear points are kept to start segments from: unbuilt regions lie next to
-            // near faces, and a segment from a point within a few tolerances of one mislabelled
-            // fragments of a Menger sponge from f32 boxes.
             let label = match labelled.get(&stub).copied() {
-                Some((q, l)) if clear && local.len() <= LOCAL_MAX => {
+                Some((q, l, true)) if clear && local.len() <= LOCAL_MAX => {
                     surface.label_from_among(p, (q, l), local)
                 }
-                Some(known) => surface.label_from(p, known),
+                Some((q, l, _)) => surface.label_from(p, (q, l)),
                 None => last.and_then(|known| surface.label_from(p, known)),
             }
             .unwrap_or_else(|| surface.label(p));
-            if clear {
-                labelled.insert(stub, (p, label));
-                *last = Some((p, label));
-            }
+            labelled.insert(stub, (p, label, clear));
+            *last = Some((p, label));
             label
         })
     }
@@ -265,7 +244,7 @@ const LOCAL_MAX: usize = 64;
 #[derive(Default)]
 struct Scratch {
     stack: Vec<Work>,
-    labelled: FxHashMap<u32, (DVec3, Label)>,
+    labelled: FxHashMap<u32, (DVec3, Label, bool)>,
     last: Option<(DVec3, Label)>,
 }
 
