@@ -204,6 +204,12 @@ impl Tree {
         let c = w.polygon.centroid();
         self.locate(w.link, c).unwrap_or_else(|stub| {
             let p = c + w.side * (2.0 * self.eps);
+            if w.side != DVec3::ZERO {
+                // Routed along a face of the tree, two tolerances off it: a ray settles it, and
+                // the point is kept from the labels other fragments start from (a segment from
+                // so near the surface labelled a union of grid boxes' fragments wrongly).
+                return surface.label(p);
+            }
             // `c` is this far from every plane on its way, so `p` is `CLEAR` tolerances away.
             let clear = self
                 .locate_stub(c)

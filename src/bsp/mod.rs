@@ -24,7 +24,7 @@ mod build;
 mod clip;
 mod surface;
 
-pub(crate) use build::FOCUS_MARGIN;
+pub(crate) use build::{FOCUS_MARGIN, Focus};
 pub(crate) use clip::Coplanar;
 pub(crate) use surface::Surface;
 
@@ -51,11 +51,12 @@ pub(crate) enum Kind {
     Cell,
     /// The plane of the polygons `tree.polygons[start..end]`, all coplanar with it.
     Face { start: u32, end: u32 },
-    /// A cell left unbuilt because nothing to be clipped comes near its polygons (see
-    /// [`Tree::build_focused`]: fragments may still reach it, away from its polygons, and are
-    /// labelled whole from a point); `content` still bounds its polygons, and
-    /// `tree.stub_polygons[start..end]` lists the solid's polygons its pieces were cut from.
-    /// Plane and links are unused.
+    /// A region left unbuilt because nothing to be clipped comes near its polygons (see
+    /// [`Tree::build_focused`] and `Focus`: fragments may still reach it, away from its
+    /// polygons, and are labelled whole from a point); `content` still bounds its polygons
+    /// within it, and `tree.stub_polygons[start..end]` lists the solid's polygons with a piece
+    /// in it (far polygons, carried whole, wherever they may reach it). Plane and links are
+    /// unused.
     Stub { start: u32, end: u32 },
 }
 

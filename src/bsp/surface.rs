@@ -134,7 +134,14 @@ impl<'a> Surface<'a> {
             return None;
         }
         let dir = (q - p) / len;
-        let inv = dir.recip();
+        // Finite: a segment between points of one face has zero components, and 0 · ∞ is NaN
+        // where an end lies in a box's face, which rejected the box (see `Aabb::ray_span`).
+        let inv = dir
+            .recip()
+            .clamp(DVec3::splat(-f64::MAX), DVec3::splat(f64::MAX));
+        let eps = self.eps;
+        // Boxes grown by the tolerance: a polygon the segment passes within it is a graze.
+        let meets = |b: &Aabb| b.expanded(eps).ray_span(p, inv, len).is_some();
         let mut crossings = 0u32;
         let mut grazed = false;
         let mut test = |i: u32| {
@@ -155,12 +162,12 @@ impl<'a> Surface<'a> {
             grazed
         };
         match among {
-            None => self.bvh.visit(|b| b.ray_span(p, inv, len).is_some(), test),
+            None => self.bvh.visit(meets, test),
             Some(among) => {
                 for &i in among {
                     // The same polygons the hierarchy's walk would test: those whose box the
                     // segment meets.
-                    if self.boxes[i as usize].ray_span(p, inv, len).is_some() && test(i) {
+                    if meets(&self.boxes[i as usize]) && test(i) {
                         break;
                     }
                 }
@@ -306,5 +313,55 @@ mod tests {
             }
         }
         assert!(agreed > 50, "{agreed} agreed");
+    }
+
+    /// A segment along a seam, as between two fragments' centroids of one face: a cube whose
+    /// faces are cut at z = 0.5, the lower pieces' cut edges a rounding error (one ulp) below
+    /// it, and a segment along z = 0.5 through the wall at x = −1. The upper half's box has its
+    /// bottom face in z = 0.5, where the slab test made NaN of 0 · ∞ and missed it; the lower
+    /// half's box ends an ulp short. Neither was tested, so the inside end took the outside
+    /// label (fragments of a Menger sponge from f32 boxes were dropped so).
+    #[test]
+    fn segments_along_a_seam_meet_its_polygons() {
+        let cube = Solid::cube(2.0).unwrap();
+        let (at, below) = (0.5f64, f64::from_bits(0.5f64.to_bits() - 1));
+        let seam = crate::geom::Plane::through(DVec3::new(0.0, 0.0, at), DVec3::Z);
+        let mut polygons = Vec::new();
+        for p in cube.polygons() {
+            match p.split(&seam, 1e-9) {
+                crate::polygon::Split::Spanning { front, back } => {
+                    let lowered: Vec<DVec3> = back
+                        .vertices()
+                        .iter()
+                        .map(|&v| {
+                            if v.z == at {
+                                DVec3::new(v.x, v.y, below)
+                            } else {
+                                v
+                            }
+                        })
+                        .collect();
+                    polygons.push(front);
+                    polygons.push(Polygon::new(&lowered, 0).unwrap());
+                }
+                _ => polygons.push(p.clone()),
+            }
+        }
+        assert_eq!(polygons.len(), 10);
+        let s = Surface::new(&polygons, 1e-9);
+        let (inside, outside) = (DVec3::new(0.0, 0.25, at), DVec3::new(-2.0, 0.25, at));
+        assert_eq!(s.label(inside), Label::Inside);
+        assert_eq!(s.label(outside), Label::Outside);
+        // Within the tolerance of both halves' edges: a graze, left to a ray.
+        let known = (outside, Label::Outside);
+        assert_eq!(s.label_from(inside, known), None);
+        let all: Vec<u32> = (0..10).collect();
+        assert_eq!(s.label_from_among(inside, known, &all), None);
+        // Off the seam, through one half: a crossing.
+        let (inside, outside) = (DVec3::new(0.0, 0.25, 0.0), DVec3::new(-2.0, 0.25, 0.0));
+        assert_eq!(
+            s.label_from(inside, (outside, Label::Outside)),
+            Some(Label::Inside)
+        );
     }
 }

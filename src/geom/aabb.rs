@@ -45,8 +45,11 @@ impl Aabb {
     }
 
     /// The slab test: the span `[near, far]` of `t ∈ [0, t_max]` over which the ray
-    /// `origin + t·dir` lies in the box, given `inv = 1 / dir` (infinite components are fine), or
-    /// `None` where it misses. An empty box is the caller's to rule out.
+    /// `origin + t·dir` lies in the box, given `inv = 1 / dir`, or `None` where it misses. An
+    /// empty box is the caller's to rule out. An infinite component of `inv` is fine unless
+    /// `origin` lies exactly in one of the box's faces across that axis: 0 · ∞ is NaN there and
+    /// the box is missed (a segment between two points of a face, running along an edge of
+    /// the surface, passed through it so); clamp `inv` to finite values where that may happen.
     pub(crate) fn ray_span(&self, origin: DVec3, inv: DVec3, t_max: f64) -> Option<(f64, f64)> {
         let t0 = (self.min - origin) * inv;
         let t1 = (self.max - origin) * inv;

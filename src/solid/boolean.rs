@@ -5,7 +5,7 @@ use glam::DVec3;
 
 use super::far::{assemble, keep_far};
 use super::{PrecisionLoss, Solid};
-use crate::bsp::{Coplanar, FOCUS_MARGIN, Label, Surface, Tree};
+use crate::bsp::{Coplanar, FOCUS_MARGIN, Focus, Label, Surface, Tree};
 use crate::geom::{Aabb, Plane, Tolerance};
 use crate::mesh::repair::WELD_TOLERANCES;
 use crate::polygon::{Polygon, Split, attach_edge_planes_among, share_near_parallel_vertices};
@@ -162,13 +162,29 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
     let (near_a, near_b) = surface_a.near_each_other(&surface_b, margin);
     let (a_kept, b_kept) = rayon::join(
         || {
-            let tree_b = Tree::build_focused(&b, eps, Some(&boxes(&a, &near_a)));
+            let (boxes, far) = (boxes(&a, &near_a), far(&near_b));
+            let tree_b = Tree::build_focused(
+                &b,
+                eps,
+                Some(Focus {
+                    boxes: &boxes,
+                    far: &far,
+                }),
+            );
             let far = keep_far(&a, &near_a, &surface_b, a_keep, a_flat);
             let near = tree_b.clip(pick(&a, &near_a), a_keep, a_rule, &surface_b);
             (far, near.into_iter().map(|c| c.polygon).collect())
         },
         || {
-            let tree_a = Tree::build_focused(&a, eps, Some(&boxes(&b, &near_b)));
+            let (boxes, far) = (boxes(&b, &near_b), far(&near_a));
+            let tree_a = Tree::build_focused(
+                &a,
+                eps,
+                Some(Focus {
+                    boxes: &boxes,
+                    far: &far,
+                }),
+            );
             let far = keep_far(&b, &near_b, &surface_a, b_keep, b_flat);
             let first = tree_a.clip(pick(&b, &near_b), b_keep, Coplanar::SameFront, &surface_a);
             let (again, done): (Vec<_>, Vec<_>) = first.into_iter().partition(|c| c.coplanar);
@@ -247,6 +263,12 @@ fn pick(polys: &[Polygon], near: &[bool]) -> Vec<Polygon> {
     let far = polys.iter().zip(near).filter(|(_, n)| !**n).map(|(p, _)| p);
     attach_edge_planes_among(&mut picked, far);
     picked
+}
+
+/// Per polygon, whether it is far from every polygon of the other operand: a polygon is near
+/// when a box of the other's comes within the margin, and those near ones are the focus.
+fn far(near: &[bool]) -> Vec<bool> {
+    near.iter().map(|n| !n).collect()
 }
 
 fn boxes(polys: &[Polygon], near: &[bool]) -> Vec<Aabb> {
