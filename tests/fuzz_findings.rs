@@ -516,13 +516,12 @@ fn union_of_a_bar_and_a_box_turned_1e_8_degrees_is_open() {
 /// (C, Q, A_C), Q its corner (−0.4375, −0.4375, −0.5625), reaches past B's own −y edge and lies
 /// folded over A's (A_C, C, P_A), P_A A's corner by (−0.4375, −0.5625, −0.4375); the mesh
 /// holds two flat pillows (a triangle and its reverse, twice) and a vertex split between two
-/// shells. Without the sharing it has 7 boundary edges; dropping the pillows would close it at
-/// the right volume, but over a fault made in the clip. The fix points at the split: against
-/// a nearly parallel plane of the other operand, every polygon holding a vertex (its own
-/// plane's or an edge plane's) should judge it by one crossing line both operands share (the
-/// `meet` line), not by its distance, which cannot tell the two corners apart.
+/// shells. Without the sharing it had 7 boundary edges. Now, against a nearly parallel plane of
+/// the other operand, every polygon holding a vertex near it (of its own plane or by an edge in
+/// a nearly parallel one) judges it by its distance across the one crossing line both operands
+/// compute (the `meet` line, `Crossing` in `polygon/planes.rs`), not by its distance from the
+/// plane, which cannot tell the two corners apart: closed, 0.001953125.
 #[test]
-#[ignore = "open: near-coplanar — not a closed 2-manifold, 4 boundary edges at step 0"]
 fn union_of_a_cube_and_itself_turned_1e_7_degrees_is_open() {
     replay_file("union_cube_and_itself_turned_1e-7");
 }

@@ -4,7 +4,7 @@
 use glam::DVec3;
 use smallvec::SmallVec;
 
-use super::planes::meet;
+use super::planes::{Crossing, canonical, meet, plane_bits};
 use super::{Polygon, Split, UNKNOWN, Vertices};
 use crate::geom::{Plane, Side, Tolerance};
 
@@ -69,6 +69,12 @@ impl Polygon {
     /// the face between them was kept by neither (a hole: the solid 3.7·10⁻⁴ below its mesh)
     /// or by both.
     ///
+    /// Where the planes cross at a sine below 10⁻⁷ (`NEAR_PARALLEL`), and where a vertex near
+    /// the plane lies on another plane crossing it so (an edge's: the polygon's neighbour across
+    /// it is nearly parallel to the cut), the vertex is judged by its distance across the line
+    /// where the two cross, as both operands compute it (`crossing_at`), not by its distance
+    /// from the plane, within `eps` across that line.
+    ///
     /// Vertices on the plane go to both pieces. An edge from a front to a back vertex is cut at
     /// a point every polygon sharing the edge computes the same, bit for bit: interpolated, or
     /// where the edge runs nearly along the plane (and the interpolation is off by a rounding
@@ -119,6 +125,25 @@ impl Polygon {
                 };
                 noise.max(eps * sine).min(eps)
             }));
+        }
+        // A vertex near the plane, on a plane crossing it nearly in parallel (the polygon's own
+        // or an edge's), is judged by its distance across their crossing line instead.
+        let mut judged = false;
+        if any_on && self.edges().len() == n {
+            for i in 0..n {
+                if dist[i].abs() <= eps
+                    && let Some((crossing, at)) = self.crossing_at(i, plane, sine)
+                {
+                    if tight.is_empty() {
+                        tight.resize(n, eps);
+                    }
+                    dist[i] = crossing.side(self.vertices[i]);
+                    tight[i] = eps * at;
+                    judged = true;
+                }
+            }
+        }
+        if sine < ON_BAND_BELOW || judged {
             any_front = dist.iter().zip(&tight).any(|(&d, &on)| d > on);
             any_back = dist.iter().zip(&tight).any(|(&d, &on)| d < -on);
         }
@@ -213,6 +238,48 @@ impl Polygon {
         [&edges[(i + n - 1) % n], &edges[i]]
             .iter()
             .any(|e| e.normal == DVec3::ZERO || e.is_same_or_flipped(plane))
+    }
+}
+
+impl Polygon {
+    /// The crossing line vertex `i`, near `plane`, is judged by, and the sine of its planes:
+    /// that of `plane` and whichever of the planes the vertex lies on (the polygon's own, at
+    /// sine `own`, and its two edges') crosses it nearly in parallel (at a sine from
+    /// [`PARALLEL_BELOW`] to [`NEAR_PARALLEL`]), the least by its bits if more than one does.
+    /// `None` where none does, or an edge beside the vertex lies in `plane` (the vertex was
+    /// made on it).
+    ///
+    /// Where two faces cross at such an angle, the distance of a vertex of either from the
+    /// other's plane is the distance across their crossing line times the sine plus the
+    /// rounding of its coordinates off its own plane, which across the line is that over the
+    /// sine (7e-9 at 1.4e-9 rad): two operands' corners 1e-10 apart, each on the other's
+    /// plane to rounding, each judged against the other's face alone, were ordered along the
+    /// line one way by one operand and the other way by the other. Judged by one line both
+    /// operands compute the same (the [`meet`] line), in every polygon holding the vertex
+    /// (those of the nearly parallel face by their own plane, its neighbours by the edge they
+    /// share with it), the two pictures agree, and the edges crossing the line are cut at
+    /// `meet`s on it.
+    fn crossing_at(&self, i: usize, plane: &Plane, own: f64) -> Option<(Crossing, f64)> {
+        let n = self.vertices.len();
+        let edges = self.edges();
+        let band = |s: f64| (PARALLEL_BELOW..NEAR_PARALLEL).contains(&s);
+        let mut best: Option<(&Plane, f64)> = band(own).then_some((&self.plane, own));
+        for e in [&edges[(i + n - 1) % n], &edges[i]] {
+            if e.normal == DVec3::ZERO {
+                continue;
+            }
+            if e.is_same_or_flipped(plane) {
+                return None;
+            }
+            let s = e.normal.cross(plane.normal).length();
+            if band(s)
+                && best.is_none_or(|(b, _)| plane_bits(&canonical(e)) < plane_bits(&canonical(b)))
+            {
+                best = Some((e, s));
+            }
+        }
+        let (on, s) = best?;
+        Some((Crossing::new(on, plane)?, s))
     }
 }
 
