@@ -99,12 +99,10 @@ impl<'a> Arena<'a> {
         (id as usize) < self.base.len()
     }
 
-    /// Whether `id` is or was cut from a polygon far from every focus box.
+    /// Whether `id` is a polygon far from every focus box. Far polygons are never cut, so a
+    /// piece (an id past `base`) is never far: no lookup of its origin.
     fn is_far(&self, id: u32) -> bool {
-        self.far
-            .get(self.origin(id) as usize)
-            .copied()
-            .unwrap_or(false)
+        self.far.get(id as usize).copied().unwrap_or(false)
     }
 
     /// The index in `base` of the polygon `id` is or was cut from.
@@ -513,7 +511,8 @@ fn cell_plane(ids: &[u32], arena: &Arena, eps: f64, keys: &mut Vec<i64>) -> Opti
 /// 558 M instructions instead of 367 M). At a quarter of the cell's, fandisk's difference
 /// came out cut so that `to_mesh` needed its wider welds (93 → 672 M).
 fn wrap_plane(ids: &[u32], near: &[u32], arena: &Arena, eps: f64) -> Option<Plane> {
-    if near.is_empty() || near.len() == ids.len() {
+    // The plane needs at least half the cell's polygons far and beyond the near box.
+    if near.is_empty() || 2 * (ids.len() - near.len()) < ids.len() {
         return None;
     }
     let bbox = arena.bbox_of(near);
