@@ -1,41 +1,69 @@
 //! Half-edges grouped by undirected edge, by a counting sort on vertex indices.
 
+use super::buckets::{Buckets, buckets};
+
 /// The undirected edge `a`–`b` as one key: the smaller index in the high half.
 #[inline]
 pub(super) fn undirected(a: u32, b: u32) -> u64 {
     ((a.min(b) as u64) << 32) | a.max(b) as u64
 }
 
+/// A ring edge's partner (see [`run_partners`]) where its edge has other uses than one ring's
+/// each way, or one alone: three rings along it, or two the same way.
+pub(super) const CROWDED: u32 = u32::MAX;
+
+/// A ring edge's partner where no other ring edge runs along it, either way.
+pub(super) const ONLY_USE: u32 = u32::MAX - 1;
+
+/// A ring edge's partner not yet known: its edge is to be sorted (again).
+pub(super) const UNKNOWN: u32 = u32::MAX - 2;
+
+/// Sets the partner of each use of one edge, `run` (a run of equal keys from [`sort_by_edge`],
+/// payloads `i << 1 | reversed`; the use's half-edge is `half(i)`, its ring `ring(i)`): the
+/// ring across where exactly one ring uses the edge each way, [`ONLY_USE`] where it is the
+/// edge's only use, [`CROWDED`] otherwise.
+#[inline]
+pub(super) fn run_partners(
+    run: &[(u64, u32)],
+    half: impl Fn(u32) -> usize,
+    ring: impl Fn(u32) -> u32,
+    partner: &mut [u32],
+) {
+    match *run {
+        [(_, x), (_, y)] if (x ^ y) & 1 == 1 => {
+            partner[half(x >> 1)] = ring(y >> 1);
+            partner[half(y >> 1)] = ring(x >> 1);
+        }
+        [(_, x)] => partner[half(x >> 1)] = ONLY_USE,
+        _ => {
+            for &(_, h) in run {
+                partner[half(h >> 1)] = CROWDED;
+            }
+        }
+    }
+}
+
 /// Runs of at most this many entries (a vertex's edges, usually about six) are sorted by
 /// insertion.
 const INSERTION_RUN: usize = 16;
 
-/// Sorts `keyed` (pairs of [`undirected`] edge and a payload that grows with the position in
-/// the list) by key, then payload: the order `sort_unstable` gives, so each edge's uses come
-/// together in the order they were listed.
+/// `keyed` (pairs of [`undirected`] edge and a payload that grows with the position in the
+/// list) sorted by key, then payload: the order `sort_unstable` gives, so each edge's uses come
+/// together in the order they were listed. Grouped by the smaller vertex: vertex `v`'s edges
+/// are `items[starts[v]..starts[v + 1]]`.
 ///
 /// Every key's smaller vertex is below `vertex_count`: a counting sort on it (one pass to
 /// count, one to place, sequential but for the writes) and then a sort of each vertex's few
 /// edges by the other end. A boolean's soup has 10⁶ half-edges: a comparison sort of them was
 /// a quarter of `to_mesh`, done three times.
-pub(super) fn sort_by_edge(keyed: &mut Vec<(u64, u32)>, vertex_count: usize) {
-    let mut start = vec![0u32; vertex_count + 1];
-    for &(key, _) in keyed.iter() {
-        start[(key >> 32) as usize + 1] += 1;
-    }
-    for v in 0..vertex_count {
-        start[v + 1] += start[v];
-    }
-    let mut sorted = vec![(0u64, 0u32); keyed.len()];
-    let mut next = start.clone();
+pub(super) fn sort_by_edge(keyed: &[(u64, u32)], vertex_count: usize) -> Buckets<(u64, u32)> {
     // Listed in payload order, placed in that order: each vertex's run keeps it.
-    for &entry in keyed.iter() {
-        let at = &mut next[(entry.0 >> 32) as usize];
-        sorted[*at as usize] = entry;
-        *at += 1;
-    }
-    for v in 0..vertex_count {
-        let run = &mut sorted[start[v] as usize..start[v + 1] as usize];
+    let mut sorted = buckets(
+        vertex_count,
+        keyed.iter().map(|&entry| ((entry.0 >> 32) as usize, entry)),
+    );
+    for w in sorted.starts.windows(2) {
+        let run = &mut sorted.items[w[0] as usize..w[1] as usize];
         if run.len() > INSERTION_RUN {
             run.sort_unstable();
         } else {
@@ -49,7 +77,7 @@ pub(super) fn sort_by_edge(keyed: &mut Vec<(u64, u32)>, vertex_count: usize) {
             }
         }
     }
-    *keyed = sorted;
+    sorted
 }
 
 #[cfg(test)]
@@ -77,8 +105,6 @@ mod tests {
             .collect();
         let mut expected = keyed.clone();
         expected.sort_unstable();
-        let mut got = keyed;
-        sort_by_edge(&mut got, 5);
-        assert_eq!(got, expected);
+        assert_eq!(sort_by_edge(&keyed, 5).items, expected);
     }
 }

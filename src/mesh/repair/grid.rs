@@ -9,6 +9,7 @@
 
 use glam::DVec3;
 
+use super::buckets::{Buckets, buckets};
 use crate::geom::Aabb;
 use crate::geom::bvh::Bvh;
 use crate::hash::FxHashMap;
@@ -92,19 +93,14 @@ impl<'p> Grid<'p> {
                     .iter()
                     .map(|&p| linear(dims, grid.index(p)) as u32)
                     .collect();
-                let mut starts = vec![0u32; total as usize + 1];
-                for &c in &linear {
-                    starts[c as usize + 1] += 1;
-                }
-                for c in 0..total as usize {
-                    starts[c + 1] += starts[c];
-                }
-                let mut next = starts.clone();
-                grid.items.resize(spots.len(), 0);
-                for (i, &c) in linear.iter().enumerate() {
-                    grid.items[next[c as usize] as usize] = i as u32;
-                    next[c as usize] += 1;
-                }
+                let Buckets { starts, items } = buckets(
+                    total as usize,
+                    linear
+                        .iter()
+                        .enumerate()
+                        .map(|(i, &c)| (c as usize, i as u32)),
+                );
+                grid.items = items;
                 grid.cells = Cells::Dense { starts, dims };
                 return grid;
             }

@@ -90,9 +90,9 @@ pub(super) fn repair(
             }
         }
     }
-    tjunction::insert_on_edges(&positions, &[], &mut rings, delta, &wide, true, &seam);
+    let known = tjunction::insert_on_edges(&positions, &[], &mut rings, delta, &wide, true, &seam);
     let (mut triangles, mut sources) =
-        regions::triangulate_regions(&positions, &rings, polygons, delta, &pinned);
+        regions::triangulate_regions(&positions, &rings, polygons, delta, &pinned, known);
     // The core's own vertices, in the order they were numbered above.
     let welded = positions.len();
     positions.resize(welded + own, DVec3::ZERO);

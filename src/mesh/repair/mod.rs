@@ -19,6 +19,7 @@
 //!    triangles around it. Solids touching along an edge or at a vertex come out as separate
 //!    manifold shells ([`shells`]).
 
+mod buckets;
 mod cracks;
 mod discs;
 mod edges;
@@ -328,9 +329,10 @@ fn pass(
         Vec::new()
     };
     let mut rings = rings_of(polygons, &map, &positions, delta, 0);
-    tjunction::insert_on_edges(&positions, &drag, &mut rings, delta, wide, quick, &[]);
+    let known = tjunction::insert_on_edges(&positions, &drag, &mut rings, delta, wide, quick, &[]);
     let pinned = vec![false; positions.len()];
-    let mut triangles = regions::triangulate_regions(&positions, &rings, polygons, delta, &pinned);
+    let mut triangles =
+        regions::triangulate_regions(&positions, &rings, polygons, delta, &pinned, known);
     let mut filled_from = triangles.0.len();
     if let Some(flat) = fill_flat {
         filled_from -= cracks::close_flat_cracks(&positions, &mut triangles, flat);

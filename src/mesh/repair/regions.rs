@@ -5,7 +5,8 @@ use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::Ring;
-use super::edges::{sort_by_edge, undirected};
+use super::buckets::{Buckets, buckets};
+use super::edges::{CROWDED, ONLY_USE, UNKNOWN, run_partners, sort_by_edge, undirected};
 use crate::geom::is_zero_area;
 use crate::geom::triangulate::{ear_clip_boundary, triangulate_boundary};
 use crate::polygon::Polygon;
@@ -28,8 +29,9 @@ pub(super) fn triangulate_regions(
     polygons: &[Polygon],
     delta: f64,
     pins: &[bool],
+    known: Vec<u32>,
 ) -> (Vec<[u32; 3]>, Vec<u32>) {
-    let partner = edge_partners(rings, positions.len());
+    let partner = edge_partners(rings, positions.len(), known);
     let mut regions = group(positions, rings, polygons, delta, &partner);
     // Where each ring's half-edges start in `partner`.
     let mut first_half: Vec<u32> = Vec::with_capacity(rings.len());
@@ -214,43 +216,82 @@ fn chain(next: &[u32], first: u32) -> impl Iterator<Item = u32> + '_ {
     })
 }
 
-/// [`edge_partners`]' answer for an edge no other ring edge runs along, either way.
-const ONLY_USE: u32 = u32::MAX - 1;
-
 /// For each ring edge, in ring order and edge order, the ring across it when exactly one ring
-/// uses the edge each way, [`ONLY_USE`] when it is the edge's only use, `u32::MAX` otherwise.
-/// One sort of the half-edges by undirected edge, not a hash map of edge uses: a boolean's
-/// soup has 10⁵ of them.
-fn edge_partners(rings: &[Ring], vertex_count: usize) -> Vec<u32> {
-    // (undirected edge, half-edge index << 1 | reversed): sorting puts each edge's uses together.
-    let mut keyed: Vec<(u64, u32)> = Vec::with_capacity(rings.len() * 4);
-    let mut owner: Vec<u32> = Vec::with_capacity(rings.len() * 4);
+/// uses the edge each way, [`ONLY_USE`] when it is the edge's only use, [`CROWDED`] otherwise
+/// (see [`run_partners`]), given those `known` already ([`UNKNOWN`] where not).
+///
+/// The T-junction search already sorted the half-edges by undirected edge before it inserted
+/// vertices, and edges it did not search kept their partners: only the rest are sorted here
+/// (on a boolean's soup about a third), with any known edge that one of them runs along too
+/// (a piece of a split edge can lie along a matched one). One sort of the half-edges by
+/// undirected edge, not a hash map of edge uses: a boolean's soup has 10⁵ of them.
+fn edge_partners(rings: &[Ring], vertex_count: usize, known: Vec<u32>) -> Vec<u32> {
+    let partner = known;
+    // (undirected edge, entry << 1 | reversed), and each entry's half-edge and ring: sorting
+    // puts each edge's uses together.
+    let mut keyed: Vec<(u64, u32)> = Vec::with_capacity(partner.len());
+    let mut entry: Vec<(u32, u32)> = Vec::with_capacity(partner.len());
+    let mut add = |half: usize, r: usize, a: u32, b: u32, keyed: &mut Vec<(u64, u32)>| {
+        keyed.push((
+            undirected(a, b),
+            (entry.len() as u32) << 1 | u32::from(a > b),
+        ));
+        entry.push((half as u32, r as u32));
+    };
+    let mut half = 0usize;
     for (r, ring) in rings.iter().enumerate() {
         for (a, b) in ring_edges(&ring.verts) {
-            keyed.push((
-                undirected(a, b),
-                (owner.len() as u32) << 1 | u32::from(a > b),
-            ));
-            owner.push(r as u32);
+            if partner[half] == UNKNOWN {
+                add(half, r, a, b, &mut keyed);
+            }
+            half += 1;
         }
     }
-    sort_by_edge(&mut keyed, vertex_count);
-    let mut partner = vec![u32::MAX; owner.len()];
+    if keyed.is_empty() {
+        return partner;
+    }
+    let mut sorted = sort_by_edge(&keyed, vertex_count);
+    if keyed.len() == partner.len() {
+        // Nothing was known (the full search).
+        return assigned(&sorted.items, &entry, partner);
+    }
+    // Known edges along an edge sorted here join its run: their partners change too.
+    let unknown = keyed.len();
+    half = 0;
+    for (r, ring) in rings.iter().enumerate() {
+        for (a, b) in ring_edges(&ring.verts) {
+            if partner[half] != UNKNOWN {
+                let low = a.min(b) as usize;
+                let (s, e) = (sorted.starts[low] as usize, sorted.starts[low + 1] as usize);
+                let key = undirected(a, b);
+                if s < e && sorted.items[s..e].iter().any(|k| k.0 == key) {
+                    add(half, r, a, b, &mut keyed);
+                }
+            }
+            half += 1;
+        }
+    }
+    if keyed.len() > unknown {
+        sorted = sort_by_edge(&keyed, vertex_count);
+    }
+    assigned(&sorted.items, &entry, partner)
+}
+
+/// `partner` with the partners of the sorted uses `keyed` set, entry `e`'s half-edge and ring
+/// being `entry[e]` (see [`edge_partners`]).
+fn assigned(keyed: &[(u64, u32)], entry: &[(u32, u32)], mut partner: Vec<u32>) -> Vec<u32> {
     let mut i = 0;
     while i < keyed.len() {
         let mut j = i + 1;
         while j < keyed.len() && keyed[j].0 == keyed[i].0 {
             j += 1;
         }
-        if let [(_, x), (_, y)] = keyed[i..j]
-            && (x ^ y) & 1 == 1
-        {
-            let (hx, hy) = ((x >> 1) as usize, (y >> 1) as usize);
-            partner[hx] = owner[hy];
-            partner[hy] = owner[hx];
-        } else if let [(_, x)] = keyed[i..j] {
-            partner[(x >> 1) as usize] = ONLY_USE;
-        }
+        run_partners(
+            &keyed[i..j],
+            |e| entry[e as usize].0 as usize,
+            |e| entry[e as usize].1,
+            &mut partner,
+        );
         i = j;
     }
     partner
@@ -296,7 +337,7 @@ impl Across<'_> {
             let first = self.first_half[m as usize] as usize;
             for (k, edge) in ring_edges(verts).enumerate() {
                 match self.partner[first + k] {
-                    u32::MAX => return None,
+                    CROWDED => return None,
                     ONLY_USE => out.push(edge),
                     other if self.region_of[other as usize] != region => out.push(edge),
                     _ => {}
@@ -307,25 +348,14 @@ impl Across<'_> {
     }
 }
 
-/// The most corners of a lone ring that [`boundary`] checks for repeats pair by pair.
-const DISTINCT_BY_PAIRS: usize = 16;
-
 /// The directed edges of a region's rings that no other ring of it (nor the ring itself, where
 /// a T-junction made a spike `a → b → a`) uses the other way.
 ///
-/// Three ways, cheapest first: a lone ring through distinct corners is its own boundary; else
-/// the edge partners the grouping found say which edges are inner ([`Across::boundary`]);
-/// where some edge has more uses than a pair, the uses are counted in a sorted list (not a
-/// hash map: most regions are a ring or two, so a region costs no allocation beyond its edges).
+/// Two ways: the edge partners the grouping found say which edges are inner
+/// ([`Across::boundary`]); where some edge has more uses than a pair, the uses are counted in a
+/// sorted list (not a hash map: most regions are a ring or two, so a region costs no allocation
+/// beyond its edges).
 fn boundary(rings: &[Ring], members: &[u32], across: &Across) -> Vec<(u32, u32)> {
-    // One ring through distinct vertices (most regions apart from a few big ones): no edge is
-    // used twice, and a pairwise look at its few corners is cheaper than counting.
-    if let [only] = members {
-        let v = &rings[*only as usize].verts;
-        if v.len() <= DISTINCT_BY_PAIRS && (1..v.len()).all(|k| !v[..k].contains(&v[k])) {
-            return ring_edges(v).collect();
-        }
-    }
     if let Some(edges) = across.boundary(rings, members) {
         return edges;
     }
@@ -460,23 +490,16 @@ struct Lists {
 impl Lists {
     /// The lists of edges `0..` by the vertex `ends` gives each, in edge order.
     fn new(vertex_count: usize, ends: impl Iterator<Item = u32> + Clone) -> Self {
-        let mut len = vec![0u32; vertex_count];
-        for v in ends.clone() {
-            len[v as usize] += 1;
+        let Buckets { starts, items } = buckets(
+            vertex_count,
+            ends.enumerate().map(|(e, v)| (v as usize, e as u32)),
+        );
+        let len = starts.windows(2).map(|w| w[1] - w[0]).collect();
+        Lists {
+            start: starts,
+            len,
+            items,
         }
-        let mut start = Vec::with_capacity(vertex_count);
-        let mut at = 0u32;
-        for &n in &len {
-            start.push(at);
-            at += n;
-        }
-        let mut items = vec![0u32; at as usize];
-        let mut next = start.clone();
-        for (e, v) in ends.enumerate() {
-            items[next[v as usize] as usize] = e as u32;
-            next[v as usize] += 1;
-        }
-        Lists { start, len, items }
     }
 
     fn of(&self, v: u32) -> &[u32] {

@@ -58,7 +58,7 @@ fn split_around_discs(
             }
         }
     }
-    sort_by_edge(&mut keyed, positions.len());
+    let keyed = sort_by_edge(&keyed, positions.len()).items;
     let order: Vec<u32> = keyed.iter().map(|&(_, h)| h).collect();
     let mut twin: Vec<u32> = vec![u32::MAX; n];
     // Edges used by more than two triangles, each as its half-edges sorted by angle.

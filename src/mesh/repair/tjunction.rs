@@ -5,7 +5,7 @@ use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::Ring;
-use super::edges::{sort_by_edge, undirected};
+use super::edges::{UNKNOWN, run_partners, sort_by_edge, undirected};
 use super::grid::Grid;
 use crate::geom::Aabb;
 use crate::mesh::weld::Wide;
@@ -26,6 +26,9 @@ use crate::mesh::weld::Wide;
 /// the pass leaves a crack, and the caller retries checking every edge. `outside` lists directed
 /// edges of polygons not among `rings` (the core of an indexed boolean) that match ring edges
 /// all the same.
+///
+/// Returns, per ring edge after the insertion, its partner where the matched-edge check found
+/// it (see [`reversed_edges`]), else [`UNKNOWN`]: the regions sort only the rest again.
 pub(super) fn insert_on_edges(
     positions: &[DVec3],
     drag: &[f64],
@@ -34,18 +37,19 @@ pub(super) fn insert_on_edges(
     wide: &Wide,
     skip_matched: bool,
     outside: &[(u32, u32)],
-) {
+) -> Vec<u32> {
     let mut first_edge: Vec<usize> = Vec::with_capacity(rings.len() + 1);
     let mut total = 0usize;
     for ring in rings.iter() {
         first_edge.push(total);
         total += ring.verts.len();
     }
-    let matched = if skip_matched {
+    let known = if skip_matched {
         reversed_edges(rings, outside, total, positions.len())
     } else {
-        vec![false; total]
+        vec![UNKNOWN; total]
     };
+    let matched = |h: usize| known[h] != UNKNOWN;
     let search = wide.widest(delta);
     // The candidates: every vertex, or, where matched edges are skipped, the ends of unmatched
     // edges. A vertex in the middle of a neighbour's edge splits the edge on its own side, so
@@ -56,7 +60,7 @@ pub(super) fn insert_on_edges(
         for (ring, &first) in rings.iter().zip(&first_edge) {
             let n = ring.verts.len();
             for k in 0..n {
-                if !matched[first + k] {
+                if !matched(first + k) {
                     candidate[ring.verts[k] as usize] = true;
                     candidate[ring.verts[(k + 1) % n] as usize] = true;
                 }
@@ -75,7 +79,7 @@ pub(super) fn insert_on_edges(
     // by the reach and drag: a point within reach of the edge lies in it.
     let dragged = |v: u32| drag.get(v as usize).copied().unwrap_or(0.0);
     // Sized first: grown by doubling, these three were copied a dozen times each.
-    let searched = matched.iter().filter(|&&m| !m).count();
+    let searched = known.iter().filter(|&&p| p == UNKNOWN).count();
     let mut edges: Vec<(u32, u32, u32, f64)> = Vec::with_capacity(searched);
     let mut edge_boxes: Vec<Aabb> = Vec::with_capacity(searched);
     let mut lengths: Vec<f64> = Vec::with_capacity(searched);
@@ -84,7 +88,7 @@ pub(super) fn insert_on_edges(
         for k in 0..n {
             let (ia, ib) = (ring.verts[k], ring.verts[(k + 1) % n]);
             let (a, b) = (positions[ia as usize], positions[ib as usize]);
-            if matched[first + k] || (b - a).length_squared() == 0.0 {
+            if matched(first + k) || (b - a).length_squared() == 0.0 {
                 continue;
             }
             let slack = dragged(ia).max(dragged(ib));
@@ -95,7 +99,7 @@ pub(super) fn insert_on_edges(
         }
     }
     if edges.is_empty() || points.is_empty() {
-        return;
+        return known;
     }
     // Cells two median edges wide (see [`Grid`]).
     let median = *lengths
@@ -140,7 +144,7 @@ pub(super) fn insert_on_edges(
         })
         .collect();
     if hits.is_empty() {
-        return;
+        return known;
     }
     hits.sort_unstable_by_key(|h| h.key);
     // The hits of ring edge `k`: `hits[start[k]..start[k + 1]]`.
@@ -180,6 +184,15 @@ pub(super) fn insert_on_edges(
         }
         ring.verts = out;
     });
+    // Old edge `h` is now edge `h + start[h]` (the vertices inserted before it push it on), and
+    // only edges that were not matched took vertices.
+    let mut renumbered = vec![UNKNOWN; total + hits.len()];
+    for (h, &p) in known.iter().enumerate() {
+        if p != UNKNOWN {
+            renumbered[h + start[h] as usize] = p;
+        }
+    }
+    renumbered
 }
 
 /// A vertex found on a ring edge: `key` is the ring edge's index and the vertex's, `along` its
@@ -190,30 +203,40 @@ struct Hit {
     vertex: u32,
 }
 
-/// For each ring edge (rings in order, edges in ring order), whether some ring, or an
-/// `outside` edge, uses it the other way: one sort of the half-edges by undirected edge rather
-/// than a hash set of them.
+/// For each ring edge (rings in order, edges in ring order), its partner as
+/// [`edge_partners`](super::edges::run_partners) gives it where some ring, or an `outside`
+/// edge, uses it the other way (the edge is matched), else [`UNKNOWN`]: one sort of the
+/// half-edges by undirected edge rather than a hash set of them. A matched edge is not
+/// searched, so it and its partner stand after the insertion, and the regions sort again only
+/// the edges that were not matched.
 fn reversed_edges(
     rings: &[Ring],
     outside: &[(u32, u32)],
     total: usize,
     vertex_count: usize,
-) -> Vec<bool> {
+) -> Vec<u32> {
     // (undirected edge, half-edge index << 1 | runs from the larger index to the smaller).
     let mut keyed: Vec<(u64, u32)> = Vec::with_capacity(total + outside.len());
-    let ring_edges = rings.iter().flat_map(|ring| {
+    let mut owner: Vec<u32> = Vec::with_capacity(total);
+    for (r, ring) in rings.iter().enumerate() {
         let n = ring.verts.len();
-        (0..n).map(move |k| (ring.verts[k], ring.verts[(k + 1) % n]))
-    });
-    for (a, b) in ring_edges.chain(outside.iter().copied()) {
+        for k in 0..n {
+            let (a, b) = (ring.verts[k], ring.verts[(k + 1) % n]);
+            keyed.push((
+                undirected(a, b),
+                (keyed.len() as u32) << 1 | u32::from(a > b),
+            ));
+            owner.push(r as u32);
+        }
+    }
+    for &(a, b) in outside {
         keyed.push((
             undirected(a, b),
             (keyed.len() as u32) << 1 | u32::from(a > b),
         ));
     }
-    sort_by_edge(&mut keyed, vertex_count);
-    // Outside edges are numbered past the rings' and need no answer of their own.
-    let mut matched = vec![false; total + outside.len()];
+    let keyed = sort_by_edge(&keyed, vertex_count).items;
+    let mut known = vec![UNKNOWN; total];
     let mut i = 0;
     while i < keyed.len() {
         let mut j = i + 1;
@@ -222,12 +245,20 @@ fn reversed_edges(
         }
         let run = &keyed[i..j];
         if run.iter().any(|&(_, h)| (h ^ run[0].1) & 1 == 1) {
-            for &(_, h) in run {
-                matched[(h >> 1) as usize] = true;
-            }
+            // Outside edges are numbered past the rings' and come last: the regions see only
+            // the rings' own uses.
+            let rings_own = run
+                .iter()
+                .take_while(|&&(_, h)| ((h >> 1) as usize) < total);
+            let own = rings_own.count();
+            run_partners(
+                &run[..own],
+                |h| h as usize,
+                |h| owner[h as usize],
+                &mut known,
+            );
         }
         i = j;
     }
-    matched.truncate(total);
-    matched
+    known
 }
