@@ -587,3 +587,32 @@ fn needle_after_unions_with_a_cube_turned_1e_5_degrees() {
 fn difference_of_spheres_turned_alike_about_close_axes_leaves_a_flat_shell() {
     replay_file("difference_of_spheres_turned_alike_about_close_axes");
 }
+
+// Found by kind1-15's 10.6-minute `booleans` run with tiny rotations on (main 3438a23, libFuzzer
+// seed 2188232807, `-fork=1 -ignore_crashes=1`, 80,341 executions): 61 failing inputs, all passing
+// with tiny rotations off, all the near-coplanar class. 58 failed on main before the judging by
+// the crossing line too (795a405); these three passed there and fail since (not minimised).
+
+/// 42 bytes: step 1 is not a closed 2-manifold (114 triangles, 2 shells, volume 0.0039062500,
+/// right to 1e-10); closed on 795a405.
+#[test]
+#[ignore = "open: near-coplanar, since the crossing-line judgement — not a closed 2-manifold at step 1"]
+fn open_at_step_1_since_the_crossing_line_judgement() {
+    replay_file("open_step_1_crossing_line_judgement");
+}
+
+/// 73 bytes: step 3 is not a closed 2-manifold (30 triangles, 3 shells, volume 0.0019531250);
+/// closed on 795a405.
+#[test]
+#[ignore = "open: near-coplanar, since the crossing-line judgement — not a closed 2-manifold at step 3"]
+fn open_at_step_3_since_the_crossing_line_judgement() {
+    replay_file("open_step_3_crossing_line_judgement");
+}
+
+/// 72 bytes: at step 3 the mesh's volume 0.13228829119 is off the solid's 0.13228829240 (9e-9
+/// relative, beyond the check's slack); within it on 795a405.
+#[test]
+#[ignore = "open: near-coplanar, since the crossing-line judgement — mesh volume off the solid's at step 3"]
+fn mesh_volume_off_at_step_3_since_the_crossing_line_judgement() {
+    replay_file("mesh_volume_step_3_crossing_line_judgement");
+}
