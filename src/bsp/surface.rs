@@ -134,11 +134,8 @@ impl<'a> Surface<'a> {
             return None;
         }
         let dir = (q - p) / len;
-        // Finite: a segment between points of one face has zero components, and 0 · ∞ is NaN
-        // where an end lies in a box's face, which rejected the box (see `Aabb::ray_span`).
-        let inv = dir
-            .recip()
-            .clamp(DVec3::splat(-f64::MAX), DVec3::splat(f64::MAX));
+        // A segment between points of one face has zero components (see `Aabb::ray_span`).
+        let inv = dir.recip();
         let eps = self.eps;
         // Boxes grown by the tolerance: a polygon the segment passes within it is a graze.
         let meets = |b: &Aabb| b.expanded(eps).ray_span(p, inv, len).is_some();

@@ -45,16 +45,19 @@ impl Aabb {
     }
 
     /// The slab test: the span `[near, far]` of `t ∈ [0, t_max]` over which the ray
-    /// `origin + t·dir` lies in the box, given `inv = 1 / dir`, or `None` where it misses. An
-    /// empty box is the caller's to rule out. An infinite component of `inv` is fine unless
-    /// `origin` lies exactly in one of the box's faces across that axis: 0 · ∞ is NaN there and
-    /// the box is missed (a segment between two points of a face, running along an edge of
-    /// the surface, passed through it so); clamp `inv` to finite values where that may happen.
+    /// `origin + t·dir` lies in the box (faces included), given `inv = 1 / dir`, or `None` where
+    /// it misses. An empty box is the caller's to rule out. A ray with a zero component of `dir`
+    /// that starts exactly in one of the box's faces across that axis runs in that face: 0 · ∞
+    /// is NaN there, and that axis then bounds nothing (an axis-aligned camera ray along a face,
+    /// a segment between two points of a face, were rejected before).
     pub(crate) fn ray_span(&self, origin: DVec3, inv: DVec3, t_max: f64) -> Option<(f64, f64)> {
         let t0 = (self.min - origin) * inv;
         let t1 = (self.max - origin) * inv;
-        let near = t0.min(t1).max_element().max(0.0);
-        let far = t0.max(t1).min_element().min(t_max);
+        let in_face = t0.is_nan_mask() | t1.is_nan_mask();
+        let near = DVec3::select(in_face, DVec3::NEG_INFINITY, t0.min(t1));
+        let far = DVec3::select(in_face, DVec3::INFINITY, t0.max(t1));
+        let near = near.max_element().max(0.0);
+        let far = far.min_element().min(t_max);
         (near <= far).then_some((near, far))
     }
 

@@ -268,5 +268,10 @@ mod tests {
         let (n, f) = clip_to_box(DVec3::new(-1.0, 0.5, 0.5), DVec3::X, &a0, 100.0).unwrap();
         assert_eq!((n, f), (1.0, 2.0));
         assert!(clip_to_box(DVec3::new(-1.0, 2.5, 0.5), DVec3::X, &a0, 100.0).is_none());
+        // Rays running in the box's faces (zero direction components, 0 · ∞ once) still meet it.
+        for y in [0.0, 1.0] {
+            let along_face = clip_to_box(DVec3::new(-1.0, y, 0.0), DVec3::X, &a0, 100.0);
+            assert_eq!(along_face, Some((1.0, 2.0)), "y = {y}");
+        }
     }
 }
