@@ -91,7 +91,7 @@ impl Tree {
         let Scratch {
             stack,
             labelled,
-            last,
+            recent,
         } = scratch;
         let eps = self.eps;
         let margin = 2.0 * eps;
@@ -132,7 +132,7 @@ impl Tree {
                         && spans_axis_plane(&w.bbox, &node.plane, eps)
                         && !self.near_surface(w.link, &w.bbox, margin));
                 if whole {
-                    if self.label_whole(&w, surface, labelled, last) == keep {
+                    if self.label_whole(&w, surface, labelled, recent) == keep {
                         out.push(Clipped {
                             polygon: w.polygon,
                             coplanar: w.coplanar,
@@ -185,10 +185,10 @@ impl Tree {
     }
 
     /// The label of a fragment that no surface below its node comes near: by point location
-    /// in the tree, or where that ends in an unbuilt cell, from the centroid (moved off the
-    /// surface it was routed along, if any): by the crossings between it and the last point
-    /// labelled in that cell, or else the nearest of the last few labelled in any cell, or
-    /// failing that by a ray.
+    /// in the tree, or where that ends in an unbuilt cell, for a fragment routed along a face
+    /// by a ray from two tolerances off it, for any other from its centroid: by the crossings
+    /// between it and the last point labelled in that cell, or else the nearest of the last
+    /// few labelled in any cell, or failing that by a ray.
     ///
     /// Two points of one unbuilt cell both farther than [`CLEAR`] tolerances from every plane
     /// on the way to it: the segment between them stays that far inside the cell (it is
@@ -200,34 +200,32 @@ impl Tree {
         w: &Work,
         surface: &Surface,
         labelled: &mut FxHashMap<u32, (DVec3, Label, bool)>,
-        last: &mut Recent,
+        recent: &mut Recent,
     ) -> Label {
         let c = w.polygon.centroid();
         self.locate(w.link, c).unwrap_or_else(|stub| {
-            let p = c + w.side * (2.0 * self.eps);
             if w.side != DVec3::ZERO {
                 // Routed along a face of the tree, two tolerances off it: a ray settles it, and
                 // the point is kept from the labels other fragments start from (a segment from
                 // so near the surface labelled a union of grid boxes' fragments wrongly).
-                return surface.label(p);
+                return surface.label(c + w.side * (2.0 * self.eps));
             }
-            // `c` is this far from every plane on its way, so `p` is `CLEAR` tolerances away.
             let clear = self
                 .locate_stub(c)
                 .is_some_and(|(at, d)| at == stub && d > (CLEAR + 2.0) * self.eps);
             let local = self.stub_polygons(stub);
             let label = match labelled.get(&stub).copied() {
                 Some((q, l, true)) if clear && local.len() <= LOCAL_MAX => {
-                    surface.label_from_among(p, (q, l), local)
+                    surface.label_from_among(c, (q, l), local)
                 }
-                Some((q, l, _)) => surface.label_from(p, (q, l)),
-                None => last
-                    .nearest(p)
-                    .and_then(|known| surface.label_from(p, known)),
+                Some((q, l, _)) => surface.label_from(c, (q, l)),
+                None => recent
+                    .nearest(c)
+                    .and_then(|known| surface.label_from(c, known)),
             }
-            .unwrap_or_else(|| surface.label(p));
-            labelled.insert(stub, (p, label, clear));
-            last.push((p, label));
+            .unwrap_or_else(|| surface.label(c));
+            labelled.insert(stub, (c, label, clear));
+            recent.push((c, label));
             label
         })
     }
@@ -248,7 +246,7 @@ const LOCAL_MAX: usize = 64;
 struct Scratch {
     stack: Vec<Work>,
     labelled: FxHashMap<u32, (DVec3, Label, bool)>,
-    last: Recent,
+    recent: Recent,
 }
 
 /// The last few points labelled in unbuilt cells, anywhere: a cell seen for the first time is

@@ -54,8 +54,7 @@ impl Wide {
     }
 
     fn cell(&self, p: DVec3) -> [i64; 3] {
-        let c = (p / (2.0 * self.delta)).floor();
-        [c.x as i64, c.y as i64, c.z as i64]
+        cell_of(p, 2.0 * self.delta)
     }
 
     /// The weld reach of `p`: `self.delta` near a crack, else `delta`.
@@ -110,10 +109,7 @@ pub(crate) fn weld_within(points: &[DVec3], delta: f64, wide: &Wide) -> (Vec<DVe
     // point's own cell, or in a neighbour only where the point is within reach of that side.
     let widest = wide.widest(delta);
     let cell_size = 64.0 * widest;
-    let cell = |p: DVec3| -> [i64; 3] {
-        let c = p / cell_size;
-        [floor(c.x), floor(c.y), floor(c.z)]
-    };
+    let cell = |p: DVec3| cell_of(p, cell_size);
     let mut grid: KeyedHashMap<[i64; 3], SmallVec<[u32; 2]>> =
         KeyedHashMap::with_capacity_and_hasher(exact.positions.len(), KeyedBuild::default());
     let mut reps: Vec<DVec3> = Vec::with_capacity(exact.positions.len());
@@ -166,6 +162,13 @@ pub(crate) fn weld_within(points: &[DVec3], delta: f64, wide: &Wide) -> (Vec<DVe
     }
     let map = first.into_iter().map(|i| rep_of[i as usize]).collect();
     (reps, map)
+}
+
+/// The grid cell of side `size` holding `p`.
+#[inline]
+fn cell_of(p: DVec3, size: f64) -> [i64; 3] {
+    let c = p / size;
+    [floor(c.x), floor(c.y), floor(c.z)]
 }
 
 /// `x.floor() as i64` (saturating, NaN to 0) without the library call (a call per axis of every

@@ -74,8 +74,8 @@ pub(crate) struct Crossing {
     /// The difference of the two normals, both facing the way the first of the pair (by
     /// [`plane_bits`] of [`canonical`]) does: exact, their components being close.
     apart: DVec3,
-    /// Whether `cut` faces the way its normal in `apart` does.
-    cut_canonical: bool,
+    /// Whether `cut` faces against its normal in `apart`.
+    flip: bool,
 }
 
 impl Crossing {
@@ -97,7 +97,7 @@ impl Crossing {
         Some(Crossing {
             on_line,
             apart: cut_n - own_n,
-            cut_canonical: cut_n == cut.normal,
+            flip: cut_n != cut.normal,
         })
     }
 
@@ -109,7 +109,7 @@ impl Crossing {
     /// exactly the negation for the same point: both operands' faces are cut on one line.
     pub(crate) fn side(&self, v: DVec3) -> f64 {
         let s = self.apart.dot(v - self.on_line);
-        if self.cut_canonical { s } else { -s }
+        if self.flip { -s } else { s }
     }
 }
 

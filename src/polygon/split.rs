@@ -12,9 +12,11 @@ impl Polygon {
     /// Where the polygon lies relative to `plane`, vertices within `eps` counting as on it, and
     /// whether some vertex does. [`Polygon::split`] says the same without cutting where this
     /// says `Coplanar` and `plane` is the polygon's own or coplanar by `eps` alone (see
-    /// `coplanar_within_eps`), and where it says `Front` or `Back` with no vertex near, or with
-    /// one near but `plane` not [`Polygon::nearly_parallel`] (the tests are `split`'s own): a
-    /// tree build that classified polygons to choose a splitter need not split those again.
+    /// `coplanar_within_eps`), and, for a polygon tracking no edge planes, where it says
+    /// `Front` or `Back` with no vertex near, or with one near but `plane` not
+    /// [`Polygon::nearly_parallel`] (the tests are `split`'s own; edge planes nearly parallel to
+    /// `plane` can make `split` judge a near vertex again): a tree build that classified
+    /// polygons to choose a splitter need not split those again.
     pub(crate) fn side_near(&self, plane: &Plane, eps: f64) -> (Side, bool) {
         if self.plane.is_same_or_flipped(plane) {
             return (Side::Coplanar, true);
@@ -272,9 +274,11 @@ impl Polygon {
                 return None;
             }
             let s = e.normal.cross(plane.normal).length();
-            if band(s)
-                && best.is_none_or(|(b, _)| plane_bits(&canonical(e)) < plane_bits(&canonical(b)))
-            {
+            // The pair closest to parallel, as `meet` takes it (bits break a tie).
+            let closer = |(b, t): (&Plane, f64)| {
+                s < t || (s == t && plane_bits(&canonical(e)) < plane_bits(&canonical(b)))
+            };
+            if band(s) && best.is_none_or(closer) {
                 best = Some((e, s));
             }
         }

@@ -264,7 +264,7 @@ fn edge_partners(rings: &[Ring], vertex_count: usize, known: Vec<u32>) -> Vec<u3
                 let low = a.min(b) as usize;
                 let (s, e) = (sorted.starts[low] as usize, sorted.starts[low + 1] as usize);
                 let key = undirected(a, b);
-                if s < e && sorted.items[s..e].iter().any(|k| k.0 == key) {
+                if sorted.items[s..e].iter().any(|k| k.0 == key) {
                     add(half, r, a, b, &mut keyed);
                 }
             }

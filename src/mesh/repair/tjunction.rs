@@ -204,7 +204,7 @@ struct Hit {
 }
 
 /// For each ring edge (rings in order, edges in ring order), its partner as
-/// [`edge_partners`](super::edges::run_partners) gives it where some ring, or an `outside`
+/// [`run_partners`](super::edges::run_partners) gives it where some ring, or an `outside`
 /// edge, uses it the other way (the edge is matched), else [`UNKNOWN`]: one sort of the
 /// half-edges by undirected edge rather than a hash set of them. A matched edge is not
 /// searched, so it and its partner stand after the insertion, and the regions sort again only

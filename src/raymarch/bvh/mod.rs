@@ -157,9 +157,14 @@ impl MeshBvh {
         let slab = |n: &Node, far: f32| -> Option<f32> {
             let t0 = (Vec3A::from(n.min) - o) * inv;
             let t1 = (Vec3A::from(n.max) - o) * inv;
-            let near = t0.min(t1).max_element().max(t_lo);
+            // A ray running in a face of the box (0 · ∞ = NaN) is bounded by nothing across it,
+            // as in `Aabb::ray_span`.
+            let in_face = t0.is_nan_mask() | t1.is_nan_mask();
+            let near = Vec3A::select(in_face, Vec3A::NEG_INFINITY, t0.min(t1));
+            let exit = Vec3A::select(in_face, Vec3A::INFINITY, t0.max(t1));
+            let near = near.max_element().max(t_lo);
             // A few ulps of slack keep grazing hits (Ize's robust traversal).
-            let fa = t0.max(t1).min_element() * 1.000_000_5;
+            let fa = exit.min_element() * 1.000_000_5;
             (near <= fa.min(far)).then_some(near)
         };
         let slack = |t: f64| (t as f32) * 1.000_000_5;
