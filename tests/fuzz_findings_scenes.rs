@@ -198,3 +198,17 @@ fn scene_bsp_route_crack_where_a_bake_meets_four_cuts() {
         }
     }
 }
+
+/// Found by a 10-minute run of the `scenes` target in round 15 (libFuzzer seed 0 picked by the
+/// run, artifact crash-c9666e9f…, after 2.75 M executions at about 405 s), not minimised: a
+/// variant of the example bracket (a mounting hole of radius 5.45, wider than the plate, a
+/// bore of radius 1.2, the counterbore lowered to 0.5). The coarse BSP route leaves 3 boundary
+/// edges (501 triangles, 2 shells, volume 7.0801436). Not traced; not known whether it predates
+/// the round's crossing-line judgement of nearly parallel faces.
+#[test]
+#[ignore = "open: the coarse BSP route leaves 3 boundary edges"]
+fn scene_bsp_route_of_a_bracket_with_a_hole_wider_than_the_plate() {
+    if let Err(e) = scene_check::check_bsp_route(&finding_scene("bsp_8")) {
+        panic!("bsp_8: {e}");
+    }
+}
