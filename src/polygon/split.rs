@@ -247,7 +247,8 @@ impl Polygon {
     /// The crossing line vertex `i`, near `plane`, is judged by, and the sine of its planes:
     /// that of `plane` and whichever of the planes the vertex lies on (the polygon's own, at
     /// sine `own`, and its two edges') crosses it nearly in parallel (at a sine from
-    /// [`PARALLEL_BELOW`] to [`NEAR_PARALLEL`]), the least by its bits if more than one does.
+    /// [`PARALLEL_BELOW`] to [`NEAR_PARALLEL`]), the closest to parallel if more than one does
+    /// (as [`meet`] takes it; the least by its bits on a tie).
     /// `None` where none does, or an edge beside the vertex lies in `plane` (the vertex was
     /// made on it).
     ///
