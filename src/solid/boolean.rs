@@ -162,29 +162,13 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
     let (near_a, near_b) = surface_a.near_each_other(&surface_b, margin);
     let (a_kept, b_kept) = rayon::join(
         || {
-            let (boxes, far) = (boxes(&a, &near_a), far(&near_b));
-            let tree_b = Tree::build_focused(
-                &b,
-                eps,
-                Some(Focus {
-                    boxes: &boxes,
-                    far: &far,
-                }),
-            );
+            let tree_b = focused_tree(&b, &near_b, &a, &near_a, eps);
             let far = keep_far(&a, &near_a, &surface_b, a_keep, a_flat);
             let near = tree_b.clip(pick(&a, &near_a), a_keep, a_rule, &surface_b);
             (far, near.into_iter().map(|c| c.polygon).collect())
         },
         || {
-            let (boxes, far) = (boxes(&b, &near_b), far(&near_a));
-            let tree_a = Tree::build_focused(
-                &a,
-                eps,
-                Some(Focus {
-                    boxes: &boxes,
-                    far: &far,
-                }),
-            );
+            let tree_a = focused_tree(&a, &near_a, &b, &near_b, eps);
             let far = keep_far(&b, &near_b, &surface_a, b_keep, b_flat);
             let first = tree_a.clip(pick(&b, &near_b), b_keep, Coplanar::SameFront, &surface_a);
             let (again, done): (Vec<_>, Vec<_>) = first.into_iter().partition(|c| c.coplanar);
@@ -267,8 +251,25 @@ fn pick(polys: &[Polygon], near: &[bool]) -> Vec<Polygon> {
 
 /// Per polygon, whether it is far from every polygon of the other operand: a polygon is near
 /// when a box of the other's comes within the margin, and those near ones are the focus.
-fn far(near: &[bool]) -> Vec<bool> {
-    near.iter().map(|n| !n).collect()
+/// The tree of `solid` focused on the near polygons of `clipped`, the operand its tree clips:
+/// `solid`'s polygons away from `clipped` are carried whole.
+fn focused_tree(
+    solid: &[Polygon],
+    solid_near: &[bool],
+    clipped: &[Polygon],
+    clipped_near: &[bool],
+    eps: f64,
+) -> Tree {
+    let boxes = boxes(clipped, clipped_near);
+    let far: Vec<bool> = solid_near.iter().map(|n| !n).collect();
+    Tree::build_focused(
+        solid,
+        eps,
+        Some(Focus {
+            boxes: &boxes,
+            far: &far,
+        }),
+    )
 }
 
 fn boxes(polys: &[Polygon], near: &[bool]) -> Vec<Aabb> {
