@@ -289,7 +289,7 @@ fn scene_bsp_route_of_a_bracket_with_a_slot_1e11_long() {
 /// 2.7e-12 in front, by the narrow band of nearly parallel planes, while the triangle round the
 /// corner (0.2 rad off) counted it as on the plane. The neighbours' slivers carried their
 /// planes into the front subtree alone. The build now sends a polygon beyond the tolerance on
-/// one side only whole to that side (`bsp/build.rs`, `face_node`).
+/// one side only whole to that side (`bsp/build/face.rs`, `face_node`).
 #[test]
 fn scene_bsp_route_of_a_bracket_keeps_a_sliver_of_a_holes_ceiling() {
     let scene = finding_scene("bsp_9");

@@ -188,7 +188,8 @@ impl Tree {
     /// in the tree, or where that ends in an unbuilt cell, for a fragment routed along a face
     /// by a ray from two tolerances off it, for any other from its centroid: by the crossings
     /// between it and the last point labelled in that cell, or in a cell seen for the first
-    /// time a point just off one of its polygons ([`Tree::seed`]), or else the nearest of the
+    /// time (with the centroid clear and at most [`LOCAL_MAX`] polygons listed) a point just
+    /// off one of its polygons ([`Tree::seed`]), or else the nearest of the
     /// last few labelled in any cell, or failing that by a ray.
     ///
     /// Two points of one unbuilt cell both farther than [`CLEAR`] tolerances from every plane
@@ -242,7 +243,7 @@ impl Tree {
     /// [`Surface::across`]). Both of that segment's ends are in the cell, clear of the planes
     /// on the way as [`CLEAR`] asks, so the cell being convex, the segment from `c` meets only
     /// the cell's polygons. The points tried are a polygon's centroid and those halfway to its
-    /// corners (a polygon reaching into the cell from outside has some of them in it), on the
+    /// corners (a polygon reaching into the cell from outside may have some of them in it), on the
     /// first few polygons; `None` when none gives one.
     fn seed(&self, c: DVec3, stub: u32, surface: &Surface) -> Option<(DVec3, Label)> {
         let local = self.stub_polygons(stub);
@@ -299,8 +300,9 @@ struct Scratch {
 /// where no seed point is found ([`Tree::seed`]) is labelled by a segment from the nearest of
 /// them. A segment walks the surface's hierarchy through every box it passes, so a shorter one
 /// is cheaper; far polygons carried whole leave many cells each reached once (a Menger sponge:
-/// ~2,400 per boolean, ~9 k instructions a segment). Eight points: rocker-arm ∪ moved 2,208.9 → 2,202.6 M instructions per whole
-/// run, Menger 1,730.2 → 1,727.1; thirty-two: 2,202.5 and 1,729.5 (the search costs more).
+/// ~2,400 per boolean, ~9 k instructions a segment). Eight points: rocker-arm ∪ moved
+/// 2,208.9 → 2,202.6 M instructions per whole run, Menger 1,730.2 → 1,727.1; thirty-two:
+/// 2,202.5 and 1,729.5 (the search costs more).
 #[derive(Default)]
 struct Recent {
     points: [Option<(DVec3, Label)>; RECENT],

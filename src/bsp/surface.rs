@@ -189,25 +189,34 @@ impl<'a> Surface<'a> {
     }
 
     /// Of the points `off` in front of and behind `at`, a point of polygon `g`, along its
-    /// normal, the one on `p`'s side of `g`'s plane with its label, when the segment between
-    /// them crosses `g` clear of its edges and no other polygon of `among`. If every polygon
-    /// that can come near that segment is in `among`, the front point is outside and the back
-    /// one inside: crossing a face of a closed surface from front to back is what enters the
-    /// solid. `None` otherwise.
+    /// normal, the one on `toward`'s side of `g`'s plane with its label, when the segment
+    /// between them crosses `g` clear of its edges and no other polygon of `among`. If every
+    /// polygon that can come near that segment is in `among`, the front point is outside and
+    /// the back one inside: crossing a face of a closed surface from front to back is what
+    /// enters the solid. `None` otherwise.
     pub fn across(
         &self,
         g: u32,
         at: DVec3,
-        p: DVec3,
+        toward: DVec3,
         off: f64,
         among: &[u32],
     ) -> Option<(DVec3, Label)> {
-        let plane = self.polygons[g as usize].plane();
+        let poly = &self.polygons[g as usize];
+        let plane = poly.plane();
         let (front, back) = (at + plane.normal * off, at - plane.normal * off);
         if self.crossings(front, back, Some(among))? != 1 {
             return None;
         }
-        Some(if plane.distance(p) >= 0.0 {
+        // The one crossing must be `g`'s own: `at` lies in `g` only where `g` is convex, and
+        // another polygon facing the other way would swap the labels.
+        if !matches!(
+            crossing(poly, front, -plane.normal, self.eps),
+            Crossing::Hit(_)
+        ) {
+            return None;
+        }
+        Some(if plane.distance(toward) >= 0.0 {
             (front, Label::Outside)
         } else {
             (back, Label::Inside)
@@ -384,6 +393,20 @@ mod tests {
         // At a corner of the face: the segment grazes its edges.
         let corner = polygons[g as usize].vertices()[0];
         assert_eq!(s.across(g, corner, above, off, &all[..6]), None);
+        // A point beside the face, in its plane, where one other polygon is crossed: that
+        // polygon's facing is not `g`'s, so no label.
+        let beside = at + DVec3::X * 3.0;
+        let square = [(-0.5, -0.5), (-0.5, 0.5), (0.5, 0.5), (0.5, -0.5)]
+            .map(|(x, y)| beside + DVec3::new(x, y, 0.0));
+        let mut apart = polygons.clone();
+        apart.push(Polygon::new(&square, 0).unwrap());
+        let u = Surface::new(&apart, 1e-9);
+        let all: Vec<u32> = (0..apart.len() as u32).collect();
+        assert_eq!(
+            u.crossings(beside + DVec3::Z * off, beside - DVec3::Z * off, Some(&all)),
+            Some(1)
+        );
+        assert_eq!(u.across(g, beside, beside + DVec3::Z, off, &all), None);
     }
 
     /// A segment along a seam, as between two fragments' centroids of one face: a cube whose

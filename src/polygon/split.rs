@@ -10,15 +10,15 @@ use crate::geom::{Plane, Side, Tolerance};
 
 impl Polygon {
     /// Where the polygon lies relative to `plane`, vertices within `eps` counting as on it, and
-    /// whether some vertex does. [`Polygon::split`] says the same without cutting where this
-    /// says `Coplanar` and `plane` is the polygon's own or coplanar by `eps` alone (see
-    /// `coplanar_within_eps`), and, for a polygon tracking no edge planes, where it says
-    /// `Front` or `Back` with no vertex near, or with one near but `plane` not nearly parallel
-    /// (`nearly_parallel`; the tests are `split`'s own; edge planes nearly parallel to
-    /// `plane` can make `split` judge a near vertex again): a tree build that classified
-    /// polygons to choose a splitter need not split those again. (It takes `Front` or `Back`
-    /// with a vertex near as they are for nearly parallel planes too, so that every polygon at
-    /// a vertex judges it alike; see `Tree::face_node`.)
+    /// whether some vertex does.
+    ///
+    /// A tree build that classified polygons by this to choose a splitter takes `Front` and
+    /// `Back` as final, with a vertex near or not and for nearly parallel planes too, so that
+    /// every polygon it settles at a vertex judges the vertex alike (see `Tree::face_node`);
+    /// and `Coplanar` where `plane` is the polygon's own or coplanar by `eps` alone (see
+    /// `coplanar_within_eps`). [`Polygon::split`] gives the same answers for a polygon tracking
+    /// no edge planes, except where a vertex is near and `plane` nearly parallel: it judges
+    /// that vertex by a narrower band.
     pub(crate) fn side_near(&self, plane: &Plane, eps: f64) -> (Side, bool) {
         if self.plane.is_same_or_flipped(plane) {
             return (Side::Coplanar, true);
@@ -37,14 +37,6 @@ impl Polygon {
             (true, true) => Side::Spanning,
         };
         (side, near)
-    }
-
-    /// True when `plane` crosses the polygon's at a sine below [`ON_BAND_BELOW`], where
-    /// [`Polygon::split`] counts vertices as on it within a band narrower than `eps` (for the
-    /// tests: the tree build takes [`Polygon::side_near`]'s answer either way).
-    #[cfg(test)]
-    pub(crate) fn nearly_parallel(&self, plane: &Plane) -> bool {
-        self.plane.normal.cross(plane.normal).length() < ON_BAND_BELOW
     }
 
     /// True when a polygon all of whose vertices lie within `eps` of `plane` is coplanar with
@@ -547,6 +539,12 @@ pub(super) fn lex_less(a: DVec3, b: DVec3) -> bool {
 mod tests {
     use super::*;
 
+    /// True when `plane` crosses the polygon's at a sine below [`ON_BAND_BELOW`], where
+    /// [`Polygon::split`] counts vertices as on it within a band narrower than `eps`.
+    fn nearly_parallel(poly: &Polygon, plane: &Plane) -> bool {
+        poly.plane.normal.cross(plane.normal).length() < ON_BAND_BELOW
+    }
+
     /// Where `side_near` settles a polygon, `split` says the same: planes through a vertex
     /// (a vertex near), tilted from the polygon's own by angles from 10⁻⁹ to 1 rad (inside and
     /// outside the nearly parallel band), at offsets within and beyond the tolerance.
@@ -578,7 +576,7 @@ mod tests {
                         };
                         let sure = match side {
                             Side::Coplanar => poly.coplanar_within_eps(&plane),
-                            _ => !near || !poly.nearly_parallel(&plane),
+                            _ => !near || !nearly_parallel(&poly, &plane),
                         };
                         if !sure {
                             in_band += 1;

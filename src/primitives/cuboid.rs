@@ -12,11 +12,20 @@ pub(crate) fn cuboid(size: DVec3) -> Result<Vec<Polygon>> {
     positive("size.y", size.y)?;
     positive("size.z", size.z)?;
     let h = size * 0.5;
+    cuboid_between(-h, h)
+}
+
+/// The six faces of the axis-aligned box from `lo` to `hi`, each corner taking its coordinates
+/// from `lo` and `hi` bit for bit (a box sized and then moved can shift a face by a rounding).
+pub(crate) fn cuboid_between(lo: DVec3, hi: DVec3) -> Result<Vec<Polygon>> {
+    positive("size.x", hi.x - lo.x)?;
+    positive("size.y", hi.y - lo.y)?;
+    positive("size.z", hi.z - lo.z)?;
     let corner = |i: usize| {
         DVec3::new(
-            if i & 1 != 0 { h.x } else { -h.x },
-            if i & 2 != 0 { h.y } else { -h.y },
-            if i & 4 != 0 { h.z } else { -h.z },
+            if i & 1 != 0 { hi.x } else { lo.x },
+            if i & 2 != 0 { hi.y } else { lo.y },
+            if i & 4 != 0 { hi.z } else { lo.z },
         )
     };
     // Corner index bits: 1 = +x, 2 = +y, 4 = +z; each face counter-clockwise from outside.

@@ -6,9 +6,9 @@ mod cuboid;
 mod polyhedron;
 mod revolved;
 
-pub(crate) use cuboid::cuboid;
+pub(crate) use cuboid::{cuboid, cuboid_between};
 pub(crate) use polyhedron::polyhedron;
-pub(crate) use revolved::{frustum, sphere, torus};
+pub(crate) use revolved::{frustum, frustum_between, sphere, torus};
 
 use crate::error::{Error, Result};
 use crate::polygon::Polygon;

@@ -36,6 +36,21 @@ pub(crate) fn frustum(
     height: f64,
     segments: u32,
 ) -> Result<Vec<Polygon>> {
+    positive("height", height)?;
+    let h = height * 0.5;
+    frustum_between(r_bottom, r_top, -h, h, segments)
+}
+
+/// The faces of a frustum along Y from `y0` (radius `r_bottom`) to `y1` (radius `r_top`), its
+/// caps at `y0` and `y1` bit for bit (a frustum sized and then moved can shift a cap by a
+/// rounding).
+pub(crate) fn frustum_between(
+    r_bottom: f64,
+    r_top: f64,
+    y0: f64,
+    y1: f64,
+    segments: u32,
+) -> Result<Vec<Polygon>> {
     for (name, r) in [("r_bottom", r_bottom), ("r_top", r_top)] {
         if !(r.is_finite() && r >= 0.0) {
             return Err(Error::param(name, r, "must be finite and ≥ 0"));
@@ -44,11 +59,10 @@ pub(crate) fn frustum(
     if r_bottom == 0.0 && r_top == 0.0 {
         return Err(Error::param("r_bottom", 0.0, "and r_top cannot both be 0"));
     }
-    positive("height", height)?;
+    positive("height", y1 - y0)?;
     count("segments", segments, 3)?;
-    let h = height * 0.5;
     // The cap centres on the axis close the profile; revolve() turns them into flat caps.
-    let profile = [(0.0, h), (r_top, h), (r_bottom, -h), (0.0, -h)];
+    let profile = [(0.0, y1), (r_top, y1), (r_bottom, y0), (0.0, y0)];
     let profile: Vec<(f64, f64)> = dedup_axis_points(&profile);
     revolve(&profile, segments, false)
 }

@@ -50,18 +50,13 @@ impl Tree {
                 Class::Front => Split::Front,
                 Class::Back => Split::Back,
                 // Beyond `eps` on one side only: whole to that side, even where `plane` is
-                // nearly parallel and `split` would judge the near vertex by the narrower band by
-                // the angle. That band depends on the polygon's angle to `plane`, so polygons
-                // sharing a vertex could disagree about it: two triangles of a marching-cubes
-                // wall 9e-4 rad off the splitter (the wall's triangle below them) cut a sliver
-                // 3e-9 across off at their corner 2.7e-12 in front of it, which their neighbour
-                // round the corner, 0.2 rad off, counted as on the plane and kept behind. The
-                // slivers took their planes into the front subtree without the neighbour, whose
-                // leaves then labelled a wedge beyond the corner inside (9e-4 rad, 0.09 long):
-                // a hole's ceiling clipped there kept a piece outside the solid, a flat shell
-                // in the mesh (`tests/fuzz_findings/bsp_9.json`). By `eps` every polygon at the
-                // vertex agrees. Only the tree's planes and partition matter here: its own
-                // pieces are never output.
+                // nearly parallel and `split` would judge a near vertex by its narrower band.
+                // That band depends on each polygon's angle to `plane`, so polygons settled here
+                // at one vertex would judge it differently and a sliver off the corner would take
+                // its plane into one subtree without its neighbour
+                // (`scene_bsp_route_of_a_bracket_keeps_a_sliver_of_a_holes_ceiling`). A
+                // polygon spanning `plane` still goes to `split`, which may use the band. Only
+                // the tree's planes and partition matter here: its own pieces are never output.
                 Class::FrontNear => Split::Front,
                 Class::BackNear => Split::Back,
                 // Nearly parallel planes: coplanar only within the band `split` tells.

@@ -44,6 +44,7 @@ pub(crate) const FOCUS_MARGIN: f64 = 4.0;
 #[derive(Clone, Copy)]
 pub(crate) struct Focus<'a> {
     pub boxes: &'a [Aabb],
+    /// Per polygon of the tree, whether it is near: one flag for every polygon.
     pub near: &'a [bool],
 }
 
@@ -147,6 +148,7 @@ impl Tree {
                 far: Vec::new(),
             },
             Some(f) => {
+                debug_assert_eq!(f.near.len(), arena.len(), "a near flag per polygon");
                 let (near, far) = all.partition(|&i| f.near[i as usize]);
                 Ids { near, far }
             }
