@@ -379,6 +379,65 @@ impl Ctx<'_> {
         Ok(Solid::from_polygons(polygons))
     }
 
+    /// Where a primitive in `frame` can matter, in its local frame: the box holding the scene's
+    /// box grown by its diagonal on every side (the reach), and the box holding the scene's box
+    /// itself; `None` for a scene of no size.
+    ///
+    /// Nothing outside the scene's box is part of the scene (its bound is conservative through
+    /// every union, intersection and difference), and a primitive enters each boolean only as
+    /// membership of points, so cutting a primitive off outside the scene's box changes nothing
+    /// inside it. Left whole, a box 10¹¹ long through a plate 6 across kept its long edges only
+    /// to the rounding of coordinates of 5·10¹⁰: where they crossed the plate they lay 1–2·10⁻⁷
+    /// off the faces' own planes, 8,000 times the boolean's tolerance there, and the
+    /// faces' cuts left a slit 10⁻⁷ wide in the plate (3 boundary edges). Cut off at the reach,
+    /// its coordinates are of the scene's size. Primitives that stay within the reach are left
+    /// as they are.
+    fn reach(&self, frame: &Frame) -> Option<(Aabb, Aabb)> {
+        let d = self.world.diagonal();
+        if !(d.is_finite() && d > 0.0) {
+            return None;
+        }
+        let to_local = frame.to_world.inverse();
+        let reach = map_box(&to_local, &self.world.expanded(d));
+        let near = map_box(&to_local, &self.world);
+        (reach.min.is_finite() && reach.max.is_finite() && !near.is_empty())
+            .then_some((reach, near))
+    }
+
+    /// A frustum along Y with radii `[bottom, top]` at `∓half_height` and `segments` around,
+    /// its ends cut off at the reach (see [`Ctx::reach`]) where it passes beyond.
+    fn frustum(
+        &self,
+        r: [f64; 2],
+        half_height: f64,
+        segments: u32,
+        frame: &Frame,
+    ) -> Result<Solid> {
+        let whole = || Solid::frustum(r[0], r[1], 2.0 * half_height, segments);
+        let Some((reach, near)) = self.reach(frame) else {
+            return whole();
+        };
+        let rmax = r[0].max(r[1]);
+        let (lo, hi) = (
+            DVec3::new(-rmax, -half_height, -rmax),
+            DVec3::new(rmax, half_height, rmax),
+        );
+        if !(lo.y < reach.min.y || hi.y > reach.max.y) {
+            return whole();
+        }
+        let (y0, y1) = (lo.y.max(reach.min.y), hi.y.min(reach.max.y));
+        let cut = Aabb::new(DVec3::new(lo.x, y0, lo.z), DVec3::new(hi.x, y1, hi.z));
+        if !(y0 < y1 && cut.overlaps(&near, 0.0)) {
+            return Ok(Solid::empty());
+        }
+        let radius = |y: f64| r[0] + (r[1] - r[0]) * ((y + half_height) / (2.0 * half_height));
+        Solid::frustum(radius(y0), radius(y1), y1 - y0, segments)?.translate(DVec3::new(
+            0.0,
+            0.5 * (y0 + y1),
+            0.0,
+        ))
+    }
+
     /// Segments for a full turn of `radius` (in the local frame): the chordal tolerance's
     /// count, at least the angle bound's.
     fn segments(&self, radius: f64, frame: &Frame) -> Result<u32> {
@@ -390,9 +449,22 @@ impl Ctx<'_> {
     }
 
     /// The primitive in its local frame.
+    ///
+    /// A box, cylinder or cone that reaches more than the scene's diagonal beyond the scene's
+    /// box is cut off there first (see [`Ctx::reach`]); one that then misses the scene's box is
+    /// empty.
     fn tessellate(&self, shape: &Shape, frame: &Frame) -> Result<Solid> {
         match shape {
-            Shape::Box { half } => Solid::cuboid(*half * 2.0),
+            Shape::Box { half } => match self.reach(frame) {
+                Some((reach, near)) if reach_beyond(-*half, *half, &reach) => {
+                    let (lo, hi) = ((-*half).max(reach.min), half.min(reach.max));
+                    if !(lo.cmplt(hi).all() && Aabb::new(lo, hi).overlaps(&near, 0.0)) {
+                        return Ok(Solid::empty());
+                    }
+                    Solid::cuboid(hi - lo)?.translate(0.5 * (lo + hi))
+                }
+                _ => Solid::cuboid(*half * 2.0),
+            },
             Shape::Sphere { radius } => {
                 let n = self.segments(*radius, frame)?;
                 Solid::sphere(*radius, n, (n / 2).max(2))
@@ -400,16 +472,21 @@ impl Ctx<'_> {
             Shape::Cylinder {
                 radius,
                 half_height,
-            } => Solid::cylinder(*radius, 2.0 * half_height, self.segments(*radius, frame)?),
+            } => self.frustum(
+                [*radius; 2],
+                *half_height,
+                self.segments(*radius, frame)?,
+                frame,
+            ),
             Shape::Cone {
                 r_bottom,
                 r_top,
                 half_height,
-            } => Solid::frustum(
-                *r_bottom,
-                *r_top,
-                2.0 * half_height,
+            } => self.frustum(
+                [*r_bottom, *r_top],
+                *half_height,
                 self.segments(r_bottom.max(*r_top), frame)?,
+                frame,
             ),
             Shape::Pyramid { base, height } => {
                 let (b, h) = (0.5 * base, 0.5 * height);
@@ -480,6 +557,11 @@ impl Ctx<'_> {
             }
         }
     }
+}
+
+/// Whether the local box from `lo` to `hi` reaches past `reach` on some axis.
+fn reach_beyond(lo: DVec3, hi: DVec3, reach: &Aabb) -> bool {
+    lo.cmplt(reach.min).any() || hi.cmpgt(reach.max).any()
 }
 
 /// Refuses a primitive thinner, where it lies, than twice the distance at which the kernel
