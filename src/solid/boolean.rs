@@ -249,10 +249,9 @@ fn pick(polys: &[Polygon], near: &[bool]) -> Vec<Polygon> {
     picked
 }
 
-/// Per polygon, whether it is far from every polygon of the other operand: a polygon is near
-/// when a box of the other's comes within the margin, and those near ones are the focus.
-/// The tree of `solid` focused on the near polygons of `clipped`, the operand its tree clips:
-/// `solid`'s polygons away from `clipped` are carried whole.
+/// The tree of `solid` focused on the near polygons of `clipped`, the operand its tree clips
+/// (a polygon is near when a box of the other operand's comes within the margin): `solid`'s
+/// polygons not near `clipped` are carried whole.
 fn focused_tree(
     solid: &[Polygon],
     solid_near: &[bool],
@@ -261,13 +260,12 @@ fn focused_tree(
     eps: f64,
 ) -> Tree {
     let boxes = boxes(clipped, clipped_near);
-    let far: Vec<bool> = solid_near.iter().map(|n| !n).collect();
     Tree::build_focused(
         solid,
         eps,
         Some(Focus {
             boxes: &boxes,
-            far: &far,
+            near: solid_near,
         }),
     )
 }
