@@ -187,8 +187,9 @@ impl Tree {
     /// The label of a fragment that no surface below its node comes near: by point location
     /// in the tree, or where that ends in an unbuilt cell, for a fragment routed along a face
     /// by a ray from two tolerances off it, for any other from its centroid: by the crossings
-    /// between it and the last point labelled in that cell, or else the nearest of the last
-    /// few labelled in any cell, or failing that by a ray.
+    /// between it and the last point labelled in that cell, or in a cell seen for the first
+    /// time a point just off one of its polygons ([`Tree::seed`]), or else the nearest of the
+    /// last few labelled in any cell, or failing that by a ray.
     ///
     /// Two points of one unbuilt cell both farther than [`CLEAR`] tolerances from every plane
     /// on the way to it: the segment between them stays that far inside the cell (it is
@@ -214,14 +215,19 @@ impl Tree {
                 .locate_stub(c)
                 .is_some_and(|(at, d)| at == stub && d > (CLEAR + 2.0) * self.eps);
             let local = self.stub_polygons(stub);
+            let small = clear && local.len() <= LOCAL_MAX;
             let label = match labelled.get(&stub).copied() {
-                Some((q, l, true)) if clear && local.len() <= LOCAL_MAX => {
-                    surface.label_from_among(c, (q, l), local)
-                }
+                Some((q, l, true)) if small => surface.label_from_among(c, (q, l), local),
                 Some((q, l, _)) => surface.label_from(c, (q, l)),
-                None => recent
-                    .nearest(c)
-                    .and_then(|known| surface.label_from(c, known)),
+                None => small
+                    .then(|| self.seed(c, stub, surface))
+                    .flatten()
+                    .and_then(|known| surface.label_from_among(c, known, local))
+                    .or_else(|| {
+                        recent
+                            .nearest(c)
+                            .and_then(|known| surface.label_from(c, known))
+                    }),
             }
             .unwrap_or_else(|| surface.label(c));
             labelled.insert(stub, (c, label, clear));
@@ -229,7 +235,47 @@ impl Tree {
             label
         })
     }
+
+    /// A point of the unbuilt cell `stub` whose label is known without walking the surface's
+    /// hierarchy, for labelling `c`, a clear point of the cell: just off a point of one of the
+    /// cell's own polygons, where the segment across it meets no other (see
+    /// [`Surface::across`]). Both of that segment's ends are in the cell, clear of the planes
+    /// on the way as [`CLEAR`] asks, so the cell being convex, the segment from `c` meets only
+    /// the cell's polygons. The points tried are a polygon's centroid and those halfway to its
+    /// corners (a polygon reaching into the cell from outside has some of them in it), on the
+    /// first few polygons; `None` when none gives one.
+    fn seed(&self, c: DVec3, stub: u32, surface: &Surface) -> Option<(DVec3, Label)> {
+        let local = self.stub_polygons(stub);
+        let off = (CLEAR + 3.0) * self.eps;
+        // Both ends `off` from `at`: `at` clear of the planes by that much more.
+        let clear = (CLEAR + 2.0) * self.eps + off;
+        // The cell's polygons within it lie in its content box: a cheap test first.
+        let content = self.nodes[stub as usize].content;
+        let inside = |p: DVec3| {
+            content.contains_point(p, 0.0)
+                && self
+                    .locate_stub(p)
+                    .is_some_and(|(at, d)| at == stub && d > clear)
+        };
+        for &g in local.iter().take(SEED_TRIES) {
+            let poly = surface.polygon(g);
+            let centroid = poly.centroid();
+            let halfway = poly.vertices().iter().map(|&v| 0.5 * (v + centroid));
+            for at in std::iter::once(centroid).chain(halfway) {
+                if !inside(at) {
+                    continue;
+                }
+                if let Some(known) = surface.across(g, at, c, off, local) {
+                    return Some(known);
+                }
+            }
+        }
+        None
+    }
 }
+
+/// How many of an unbuilt cell's polygons [`Tree::seed`] tries.
+const SEED_TRIES: usize = 8;
 
 /// How far, in tolerances, two points of an unbuilt cell must be from the planes on their way
 /// for the segment between them to be tested against the cell's own polygons only.
@@ -249,11 +295,11 @@ struct Scratch {
     recent: Recent,
 }
 
-/// The last few points labelled in unbuilt cells, anywhere: a cell seen for the first time is
-/// labelled by a segment from the nearest of them. A segment walks the surface's hierarchy
-/// through every box it passes, so a shorter one is cheaper; far polygons carried whole leave
-/// many cells each reached once (a Menger sponge: ~2,400 per boolean, ~9 k instructions a
-/// segment). Eight points: rocker-arm ∪ moved 2,208.9 → 2,202.6 M instructions per whole
+/// The last few points labelled in unbuilt cells, anywhere: a cell seen for the first time
+/// where no seed point is found ([`Tree::seed`]) is labelled by a segment from the nearest of
+/// them. A segment walks the surface's hierarchy through every box it passes, so a shorter one
+/// is cheaper; far polygons carried whole leave many cells each reached once (a Menger sponge:
+/// ~2,400 per boolean, ~9 k instructions a segment). Eight points: rocker-arm ∪ moved 2,208.9 → 2,202.6 M instructions per whole
 /// run, Menger 1,730.2 → 1,727.1; thirty-two: 2,202.5 and 1,729.5 (the search costs more).
 #[derive(Default)]
 struct Recent {

@@ -129,6 +129,21 @@ impl<'a> Surface<'a> {
         (q, q_label): (DVec3, Label),
         among: Option<&[u32]>,
     ) -> Option<Label> {
+        let crossings = self.crossings(p, q, among)?;
+        Some(if crossings % 2 == 1 {
+            match q_label {
+                Label::Inside => Label::Outside,
+                Label::Outside => Label::Inside,
+            }
+        } else {
+            q_label
+        })
+    }
+
+    /// How many polygons the segment from `p` to `q` crosses (of `among`, or of all), or `None`
+    /// when it grazes an edge, runs in a polygon's plane or crosses a plane within the tolerance
+    /// of either end.
+    fn crossings(&self, p: DVec3, q: DVec3, among: Option<&[u32]>) -> Option<u32> {
         let len = (q - p).length();
         if len <= self.eps {
             return None;
@@ -170,17 +185,38 @@ impl<'a> Surface<'a> {
                 }
             }
         }
-        if grazed {
+        (!grazed).then_some(crossings)
+    }
+
+    /// Of the points `off` in front of and behind `at`, a point of polygon `g`, along its
+    /// normal, the one on `p`'s side of `g`'s plane with its label, when the segment between
+    /// them crosses `g` clear of its edges and no other polygon of `among`. If every polygon
+    /// that can come near that segment is in `among`, the front point is outside and the back
+    /// one inside: crossing a face of a closed surface from front to back is what enters the
+    /// solid. `None` otherwise.
+    pub fn across(
+        &self,
+        g: u32,
+        at: DVec3,
+        p: DVec3,
+        off: f64,
+        among: &[u32],
+    ) -> Option<(DVec3, Label)> {
+        let plane = self.polygons[g as usize].plane();
+        let (front, back) = (at + plane.normal * off, at - plane.normal * off);
+        if self.crossings(front, back, Some(among))? != 1 {
             return None;
         }
-        Some(if crossings % 2 == 1 {
-            match q_label {
-                Label::Inside => Label::Outside,
-                Label::Outside => Label::Inside,
-            }
+        Some(if plane.distance(p) >= 0.0 {
+            (front, Label::Outside)
         } else {
-            q_label
+            (back, Label::Inside)
         })
+    }
+
+    /// Polygon `g` of the surface.
+    pub fn polygon(&self, g: u32) -> &Polygon {
+        &self.polygons[g as usize]
     }
 
     /// Inside when the generalised winding number is above one half.
@@ -310,6 +346,44 @@ mod tests {
             }
         }
         assert!(agreed > 50, "{agreed} agreed");
+    }
+
+    /// Points just off a face are labelled by the face alone where nothing else comes near:
+    /// outside in front, inside behind; not where another polygon lies in the face (as where
+    /// two boxes touch), nor where the segment would graze the face's edge.
+    #[test]
+    fn points_across_a_face() {
+        let cube = Solid::cube(2.0).unwrap();
+        let polygons = cube.polygons().to_vec();
+        let s = Surface::new(&polygons, 1e-9);
+        let all: Vec<u32> = (0..polygons.len() as u32).collect();
+        let g = (0..polygons.len())
+            .find(|&i| polygons[i].plane().normal.dot(DVec3::Z) > 0.5)
+            .unwrap() as u32;
+        let at = polygons[g as usize].centroid();
+        let off = 7e-9;
+        let (above, below) = (at + DVec3::Z, at - DVec3::Z * 0.5);
+        assert_eq!(
+            s.across(g, at, above, off, &all),
+            Some((at + DVec3::Z * off, Label::Outside))
+        );
+        assert_eq!(
+            s.across(g, at, below, off, &all),
+            Some((at - DVec3::Z * off, Label::Inside))
+        );
+        assert_eq!(s.label(at + DVec3::Z * off), Label::Outside);
+        assert_eq!(s.label(at - DVec3::Z * off), Label::Inside);
+        // A second polygon in the face, facing the other way: no label from the face alone.
+        let mut touching = polygons.clone();
+        let mut flipped = polygons[g as usize].clone();
+        flipped.flip();
+        touching.push(flipped);
+        let t = Surface::new(&touching, 1e-9);
+        let all: Vec<u32> = (0..touching.len() as u32).collect();
+        assert_eq!(t.across(g, at, above, off, &all), None);
+        // At a corner of the face: the segment grazes its edges.
+        let corner = polygons[g as usize].vertices()[0];
+        assert_eq!(s.across(g, corner, above, off, &all[..6]), None);
     }
 
     /// A segment along a seam, as between two fragments' centroids of one face: a cube whose
