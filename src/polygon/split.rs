@@ -13,10 +13,12 @@ impl Polygon {
     /// whether some vertex does. [`Polygon::split`] says the same without cutting where this
     /// says `Coplanar` and `plane` is the polygon's own or coplanar by `eps` alone (see
     /// `coplanar_within_eps`), and, for a polygon tracking no edge planes, where it says
-    /// `Front` or `Back` with no vertex near, or with one near but `plane` not
-    /// [`Polygon::nearly_parallel`] (the tests are `split`'s own; edge planes nearly parallel to
+    /// `Front` or `Back` with no vertex near, or with one near but `plane` not nearly parallel
+    /// (`nearly_parallel`; the tests are `split`'s own; edge planes nearly parallel to
     /// `plane` can make `split` judge a near vertex again): a tree build that classified
-    /// polygons to choose a splitter need not split those again.
+    /// polygons to choose a splitter need not split those again. (It takes `Front` or `Back`
+    /// with a vertex near as they are for nearly parallel planes too, so that every polygon at
+    /// a vertex judges it alike; see `Tree::face_node`.)
     pub(crate) fn side_near(&self, plane: &Plane, eps: f64) -> (Side, bool) {
         if self.plane.is_same_or_flipped(plane) {
             return (Side::Coplanar, true);
@@ -38,7 +40,9 @@ impl Polygon {
     }
 
     /// True when `plane` crosses the polygon's at a sine below [`ON_BAND_BELOW`], where
-    /// [`Polygon::split`] counts vertices as on it within a band narrower than `eps`.
+    /// [`Polygon::split`] counts vertices as on it within a band narrower than `eps` (for the
+    /// tests: the tree build takes [`Polygon::side_near`]'s answer either way).
+    #[cfg(test)]
     pub(crate) fn nearly_parallel(&self, plane: &Plane) -> bool {
         self.plane.normal.cross(plane.normal).length() < ON_BAND_BELOW
     }

@@ -49,8 +49,21 @@ impl Tree {
             let split = match class {
                 Class::Front => Split::Front,
                 Class::Back => Split::Back,
-                Class::FrontNear if !poly.nearly_parallel(&plane) => Split::Front,
-                Class::BackNear if !poly.nearly_parallel(&plane) => Split::Back,
+                // Beyond `eps` on one side only: whole to that side, even where `plane` is
+                // nearly parallel and `split` would judge the near vertex by the narrower band by
+                // the angle. That band depends on the polygon's angle to `plane`, so polygons
+                // sharing a vertex could disagree about it: two triangles of a marching-cubes
+                // wall 9e-4 rad off the splitter (the wall's triangle below them) cut a sliver
+                // 3e-9 across off at their corner 2.7e-12 in front of it, which their neighbour
+                // round the corner, 0.2 rad off, counted as on the plane and kept behind. The
+                // slivers took their planes into the front subtree without the neighbour, whose
+                // leaves then labelled a wedge beyond the corner inside (9e-4 rad, 0.09 long):
+                // a hole's ceiling clipped there kept a piece outside the solid, a flat shell
+                // in the mesh (`tests/fuzz_findings/bsp_9.json`). By `eps` every polygon at the
+                // vertex agrees. Only the tree's planes and partition matter here: its own
+                // pieces are never output.
+                Class::FrontNear => Split::Front,
+                Class::BackNear => Split::Back,
                 // Nearly parallel planes: coplanar only within the band `split` tells.
                 Class::Coplanar if poly.coplanar_within_eps(&plane) => Split::Coplanar,
                 _ => poly.split_as(&plane, eps, arena.given(id).then_some(&splitter[..])),
@@ -84,8 +97,10 @@ impl Tree {
 }
 
 /// A polygon against a candidate splitter's plane, from [`Polygon::side_near`]: what
-/// [`Polygon::split`] would say without cutting, where that is settled (`*Near`: unless the
-/// planes are nearly parallel); `Unsettled` is left to `split`.
+/// [`Polygon::split`] would say without cutting, where that is settled (`*Near`: a vertex
+/// within `eps`, the rest beyond it on one side, which the build takes as it is even where
+/// `split` would judge that vertex by the band of nearly parallel planes; see
+/// [`Tree::face_node`]); `Unsettled` is left to `split`.
 #[derive(Clone, Copy, PartialEq, Eq)]
 pub(super) enum Class {
     Front,
