@@ -331,3 +331,39 @@ fn scene_bsp_route_of_a_bracket_keeps_a_sliver_of_a_holes_ceiling() {
         solid.volume()
     );
 }
+
+/// Found by a second 10-minute run of the `scenes` target in round 16 (after the fix above,
+/// libFuzzer seed 1987012407, artifact crash-6c049723…, after 1.64 M executions at about 360 s),
+/// not minimised (`bsp_10`): the example bracket less, among its cuts, a second smooth union of
+/// plate and boss (the first's plate 0.6 thick, the second's 0.5). The coarse BSP route leaves
+/// 6 boundary edges and 8 shells (864 triangles), all on the boss's wall at z = −0.8, x ≈ 0,
+/// y 0.62 … 0.94: the two smooth unions are baked on different grids (their bounds differ), so
+/// the one boss comes out as two marching-cubes walls whose vertices lie 10⁻⁹ … 10⁻⁸ apart,
+/// near-coincident surfaces the booleans cut into slivers the repair does not close. Removing
+/// children while it failed left a purer form of that: a smooth union of the boss alone less
+/// the smooth union of plate and boss (62 boundary edges, 18 shells, volume 3.1e-4 where the
+/// two bakes should nearly cancel). Not traced further (round 16 ran out of time).
+#[test]
+#[ignore = "open: two bakes of one boss on different grids, walls 1e-9..1e-8 apart, leave slivers open"]
+fn scene_bsp_route_less_a_second_bake_of_the_same_boss() {
+    let mut failures = Vec::new();
+    if let Err(e) = scene_check::check_bsp_route(&finding_scene("bsp_10")) {
+        failures.push(format!("bsp_10: {e}"));
+    }
+    let reduced = bspcsg::Scene::from_json_str(
+        r#"{"op": "subtract", "children": [
+            {"op": "smooth_union", "smooth": "polynomial", "smooth_k": 0.3, "children": [
+                {"kind": "sdf_primitive", "pos": [0, 0.75, 0],
+                 "data": {"primitive_type": "cylinder", "radius": 0.8, "height": 1.5}}]},
+            {"op": "smooth_union", "smooth": "polynomial", "smooth_k": 0.3, "children": [
+                {"kind": "sdf_primitive", "data": {"primitive_type": "box", "size": [1.0, 0.5, 3.0]}},
+                {"kind": "sdf_primitive", "pos": [0, 0.75, 0],
+                 "data": {"primitive_type": "cylinder", "radius": 0.8, "height": 1.5}}]}
+        ]}"#,
+    )
+    .unwrap();
+    if let Err(e) = scene_check::check_bsp_route(&reduced) {
+        failures.push(format!("reduced: {e}"));
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}

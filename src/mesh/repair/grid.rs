@@ -105,27 +105,32 @@ impl<'p> Grid<'p> {
                 return grid;
             }
         }
-        let mut keyed: Vec<(u64, u32)> = spots
+        // Grouped by a count per occupied cell, then placed in point order: two lookups per
+        // point (a sort of the keyed points was 2.9 M instructions of rocker-arm's to_mesh).
+        let keys: Vec<u64> = spots
             .iter()
-            .enumerate()
-            .map(|(i, &p)| {
+            .map(|&p| {
                 let [x, y, z] = grid.index(p);
-                (pack(x, y, z), i as u32)
+                pack(x, y, z)
             })
             .collect();
-        keyed.sort_unstable();
-        let mut cells = FxHashMap::default();
-        cells.reserve(keyed.len());
-        let mut i = 0;
-        while i < keyed.len() {
-            let mut j = i + 1;
-            while j < keyed.len() && keyed[j].0 == keyed[i].0 {
-                j += 1;
-            }
-            cells.insert(keyed[i].0, (i as u32, j as u32));
-            i = j;
+        let mut cells: FxHashMap<u64, (u32, u32)> = FxHashMap::default();
+        cells.reserve(keys.len());
+        for &k in &keys {
+            cells.entry(k).or_insert((0, 0)).1 += 1;
         }
-        grid.items.extend(keyed.iter().map(|k| k.1));
+        let mut at = 0u32;
+        for range in cells.values_mut() {
+            let count = range.1;
+            *range = (at, at);
+            at += count;
+        }
+        grid.items.resize(keys.len(), 0);
+        for (i, &k) in keys.iter().enumerate() {
+            let range = cells.get_mut(&k).expect("counted above");
+            grid.items[range.1 as usize] = i as u32;
+            range.1 += 1;
+        }
         grid.cells = Cells::Sparse(cells);
         grid
     }

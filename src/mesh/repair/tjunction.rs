@@ -146,7 +146,22 @@ pub(super) fn insert_on_edges(
     if hits.is_empty() {
         return known;
     }
-    hits.sort_unstable_by_key(|h| h.key);
+    // The edges were searched in ring order and their hits collected in that order, so the hits
+    // come grouped by edge, edges ascending: only each edge's few hits need ordering by vertex
+    // (a sort of the whole list was 3.5 M instructions of a block less 100 cylinders).
+    let mut i = 0;
+    while i < hits.len() {
+        let edge = hits[i].key >> 32;
+        let mut j = i + 1;
+        while j < hits.len() && hits[j].key >> 32 == edge {
+            j += 1;
+        }
+        debug_assert!(j == hits.len() || hits[j].key >> 32 > edge);
+        if j - i > 1 {
+            hits[i..j].sort_unstable_by_key(|h| h.key);
+        }
+        i = j;
+    }
     // The hits of ring edge `k`: `hits[start[k]..start[k + 1]]`.
     let mut start = vec![0u32; total + 1];
     for h in &hits {
