@@ -7,14 +7,18 @@
 #[allow(dead_code)]
 mod scene_check;
 
-/// The BSP route of a scene document (`tests/fuzz_findings/scene_<i>.json`) at the coarse
-/// settings of the `scenes` target: tolerance 1/20, cell 1/12 of the diagonal.
-fn finding_scene(name: &str) -> bspcsg::Scene {
+/// A finding's scene document (`tests/fuzz_findings/<name>.json`).
+fn finding_json(name: &str) -> String {
     let path = format!(
         "{}/tests/fuzz_findings/{name}.json",
         env!("CARGO_MANIFEST_DIR")
     );
-    bspcsg::Scene::from_json_str(&std::fs::read_to_string(&path).unwrap()).unwrap()
+    std::fs::read_to_string(&path).unwrap()
+}
+
+/// A finding's scene.
+fn finding_scene(name: &str) -> bspcsg::Scene {
+    bspcsg::Scene::from_json_str(&finding_json(name)).unwrap()
 }
 
 /// The report of a finding's bake at resolution 12, as the `scenes` target bakes it.
@@ -25,15 +29,17 @@ fn bake_report(name: &str) -> bspcsg::MeshReport {
         .report()
 }
 
+/// The report of a finding's BSP route at the `scenes` target's coarse settings.
 fn coarse_bsp_report(name: &str) -> bspcsg::MeshReport {
+    coarse_route(name).2.to_mesh().report()
+}
+
+/// A finding's scene, the `scenes` target's coarse settings for it and its BSP route there.
+fn coarse_route(name: &str) -> (bspcsg::Scene, bspcsg::TessellationOptions, bspcsg::Solid) {
     let scene = finding_scene(name);
-    let d = scene.bbox().diagonal();
-    let coarse = bspcsg::TessellationOptions {
-        tolerance: Some(d / 20.0),
-        cell: Some(d / 12.0),
-        max_angle: None,
-    };
-    scene.to_solid(&coarse).unwrap().to_mesh().report()
+    let options = scene_check::coarse(&scene).unwrap();
+    let solid = scene.to_solid(&options).unwrap();
+    (scene, options, solid)
 }
 
 /// Found by a 10-minute run of the `scenes` target: variations of the example bracket whose
@@ -212,17 +218,15 @@ fn scene_bsp_route_crack_where_a_bake_meets_four_cuts() {
 /// 10⁻⁷: a slit of three vertices, one 1.06·10⁻⁷ off the line of the other two, beyond any weld.
 /// The plate minus the slot alone closed but wrongly: the slot an inner cavity, not a hole
 /// (2 shells, genus 0), volume 5·10⁻⁸ high. The BSP route now cuts a box, cylinder or cone off
-/// where it reaches more than the scene's diagonal beyond the scene's box (`sdf/bsp_route.rs`,
-/// `reach`): nothing there is part of the scene, and the slot's coordinates are then of the
+/// where it reaches more than the scene's diagonal beyond the scene's box
+/// (`sdf/bsp_route/reach.rs`): nothing there is part of the scene, and the slot's coordinates are then of the
 /// scene's size.
 #[test]
 fn scene_bsp_route_of_a_bracket_with_a_slot_1e11_long() {
-    let scene = finding_scene("bsp_8");
+    let (scene, options, solid) = coarse_route("bsp_8");
     if let Err(e) = scene_check::check_bsp_route(&scene) {
         panic!("bsp_8: {e}");
     }
-    let options = scene_check::coarse(&scene).unwrap();
-    let solid = scene.to_solid(&options).unwrap();
     let mesh = solid.to_mesh();
     let report = mesh.report();
     assert!(
@@ -232,12 +236,9 @@ fn scene_bsp_route_of_a_bracket_with_a_slot_1e11_long() {
     // The same document with a slot 12 long, which still passes through the plate and the boss
     // and reaches less than the scene's diagonal beyond its box: nothing of it is cut off, and
     // its coordinates are of the scene's size.
-    let path = format!(
-        "{}/tests/fuzz_findings/bsp_8.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let json = std::fs::read_to_string(&path).unwrap();
-    let short = bspcsg::Scene::from_json_str(&json.replace("99999999990.3", "12.0")).unwrap();
+    let short =
+        bspcsg::Scene::from_json_str(&finding_json("bsp_8").replace("99999999990.3", "12.0"))
+            .unwrap();
     assert_eq!(short.bbox(), scene.bbox());
     let expected = short.to_solid(&options).unwrap().volume();
     assert!(
@@ -292,12 +293,10 @@ fn scene_bsp_route_of_a_bracket_with_a_slot_1e11_long() {
 /// one side only whole to that side (`bsp/build/face.rs`, `face_node`).
 #[test]
 fn scene_bsp_route_of_a_bracket_keeps_a_sliver_of_a_holes_ceiling() {
-    let scene = finding_scene("bsp_9");
+    let (scene, options, solid) = coarse_route("bsp_9");
     if let Err(e) = scene_check::check_bsp_route(&scene) {
         panic!("bsp_9: {e}");
     }
-    let options = scene_check::coarse(&scene).unwrap();
-    let solid = scene.to_solid(&options).unwrap();
     let mesh = solid.to_mesh();
     let report = mesh.report();
     assert!(
@@ -309,12 +308,7 @@ fn scene_bsp_route_of_a_bracket_keeps_a_sliver_of_a_holes_ceiling() {
     );
     // The same cuts made in two steps (the bore and counterbore, then each hole), so every tree
     // but the first is another solid's: the same volume.
-    let path = format!(
-        "{}/tests/fuzz_findings/bsp_9.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let json = std::fs::read_to_string(&path).unwrap();
-    let mut doc: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let mut doc: serde_json::Value = serde_json::from_str(&finding_json("bsp_9")).unwrap();
     let cuts = doc["tree"]["children"].as_array().unwrap().clone();
     let holes = cuts[3]["children"].as_array().unwrap().clone();
     let mut steps = vec![serde_json::json!({"op": "subtract", "children": cuts[..3]})];

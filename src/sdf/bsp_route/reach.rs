@@ -103,18 +103,6 @@ mod tests {
     use crate::geom::Aabb;
     use crate::sdf::scene::Scene;
     use crate::sdf::tree::Frame;
-    use crate::solid::Solid;
-
-    /// The least and greatest coordinate of the solid's vertices along `axis`.
-    fn extent(solid: &Solid, axis: usize) -> (f64, f64) {
-        solid
-            .polygons()
-            .iter()
-            .flat_map(|p| p.vertices().iter().map(move |v| v[axis]))
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
-                (lo.min(x), hi.max(x))
-            })
-    }
 
     /// Long primitives placed `half` along the axis so their near end sits at the scene's
     /// middle: cut off at the far end (the reach is irrational there, the scene's diagonal
@@ -143,17 +131,22 @@ mod tests {
             let cut = ctx
                 .cut_box(DVec3::new(half, 2.0, 2.0), &along(DVec3::X))
                 .unwrap();
-            let (lo, hi) = extent(&cut, 0);
-            assert_eq!(lo, -half, "box of half length {half}");
-            assert!(hi < -half + 10.0, "box of half length {half} not cut: {hi}");
+            let b = cut.bbox();
+            assert_eq!(b.min.x, -half, "box of half length {half}");
+            assert!(
+                b.max.x < -half + 10.0,
+                "box of half length {half} not cut: {}",
+                b.max.x
+            );
             let cut = ctx
                 .cut_frustum([1.0, 0.5], half, 16, &along(DVec3::Y))
                 .unwrap();
-            let (lo, hi) = extent(&cut, 1);
-            assert_eq!(lo, -half, "frustum of half height {half}");
+            let b = cut.bbox();
+            assert_eq!(b.min.y, -half, "frustum of half height {half}");
             assert!(
-                hi < -half + 10.0,
-                "frustum of half height {half} not cut: {hi}"
+                b.max.y < -half + 10.0,
+                "frustum of half height {half} not cut: {}",
+                b.max.y
             );
             // The bottom radius uncut: the ring's vertex on an axis at 1 exactly.
             let mut bottom = cut.polygons().iter().flat_map(|p| p.vertices().iter());
