@@ -593,8 +593,11 @@ fn difference_of_spheres_turned_alike_about_close_axes_leaves_a_flat_shell() {
 // with tiny rotations off, all the near-coplanar class. 58 failed on main before the judging by
 // the crossing line too (795a405); these three passed there and fail since (not minimised).
 
-/// 42 bytes: step 1 is not a closed 2-manifold (114 triangles, 2 shells, volume 0.0039062500,
-/// right to 1e-10); closed on 795a405.
+/// 42 bytes: step 1 is not a closed 2-manifold; closed on 795a405. A 0.125 × 0.125 × 0.375 box
+/// turned 1e-8° united with a 0.125 cube turned 1e-7° at the same centre, less the OBJ cube
+/// there unturned. When found: 114 triangles, 2 shells, volume right to 1e-10; on main be1b9bf
+/// (round 17): 123 triangles, 7 boundary edges on the cube's faces x = −0.4375 and y = −0.5625,
+/// and the solid's volume 0.0039079589 is 1.7e-6 above the two end pieces' 0.00390625.
 #[test]
 #[ignore = "open: near-coplanar, since the crossing-line judgement — not a closed 2-manifold at step 1"]
 fn open_at_step_1_since_the_crossing_line_judgement() {
@@ -615,4 +618,22 @@ fn open_at_step_3_since_the_crossing_line_judgement() {
 #[ignore = "open: near-coplanar, since the crossing-line judgement — mesh volume off the solid's at step 3"]
 fn mesh_volume_off_at_step_3_since_the_crossing_line_judgement() {
     replay_file("mesh_volume_step_3_crossing_line_judgement");
+}
+
+/// Found by a 10-minute run of the `booleans` target in round 17 (libFuzzer seed 1701, artifact
+/// crash-62760edd…, after 2,037 executions at about 14 s), not minimised; passes with tiny
+/// rotations off. A 1 × 1.5 × 1 box is nicked at its corner (−0.5, 0, −0.5) by a unit cube
+/// turned 0.17 rad (9e-11 of volume), then less a 1 × 0.125 × 1 slab through its middle turned
+/// 1e-6° (1.7e-8 rad), whose four sides lie a hair off the box's. Step 2's solid has volume
+/// 1.3645833 where the two pieces make 1.375: 1/96 short. Traced to its polygons: above y = 0 the
+/// box's face z = −0.5 lost the slab's strip (0.6875 left, right) while the slab's own face there
+/// was kept, turned inward (area 0.0625, normal +z at z = −0.5): each judged inside the other,
+/// and (1/3)(0.5)(0.0625) = 1/96 is the volume it takes. On the other three sides both were kept
+/// (a double layer: volume right, not manifold). The plain box (no nick) less the same slab is
+/// closed with volume right to 1e-10, so the nick's small polygons at that corner, on the slab's
+/// crossing lines, are part of it. Not traced into `Polygon::split` for lack of time.
+#[test]
+#[ignore = "open: near-coplanar — a nicked box less a slab turned 1e-6° keeps the slab's face inside the box while dropping the box's (volume 1/96 short)"]
+fn nicked_box_less_a_slab_turned_1e_6_degrees() {
+    replay_file("nicked_box_less_slab_turned_1e-6");
 }
