@@ -83,12 +83,18 @@ pub(crate) struct Lattice {
 impl Lattice {
     /// The lattice of the grid [`Grid::new`] makes for `region` without options' bounds (the
     /// region padded by a cell on every side, centred), cell `cell`: unchecked, so a fine cell
-    /// over a large region still lays a lattice whose small parts may be gridded.
+    /// over a large region still lays a lattice whose small parts may be gridded. Its hair is
+    /// that grid's, but at most that of the largest grid a bake may have
+    /// ([`MAX_GRID_CELLS`] along each axis, 0.028 of a cell): a small part baked on a
+    /// lattice far wider than any grid loses no more to the hair than on a grid of its own.
     pub(crate) fn over(region: &Aabb, cell: f64) -> Result<Lattice> {
         if !(cell.is_finite() && cell > 0.0) {
             return Err(Error::param("cell", cell, "must be finite and > 0"));
         }
-        Ok(Lattice::laid(region, cell, true))
+        let mut lattice = Lattice::laid(region, cell, true);
+        let widest = MAX_GRID_CELLS as f64 * 3f64.sqrt() * cell;
+        lattice.hair = lattice.hair.min(MAX_MOVE * widest);
+        Ok(lattice)
     }
 
     /// The lattice of `region` with cells of `cell`, padded or not (the one layout of
