@@ -653,3 +653,82 @@ fn nicked_box_less_a_slab_turned_1e_6_degrees() {
 fn union_with_a_bar_turned_1e_9_degrees_on_a_cut_cube() {
     replay_file("union_with_bar_turned_1e-9_on_a_cut_cube");
 }
+
+// Found by a 10-minute `booleans` run in round 17 with libFuzzer's fork mode (seed 1706,
+// `-fork=1 -ignore_crashes=1`, 38,826 executions in 602 s): 38 failing inputs, every one passing
+// with tiny rotations off (checked one by one), so all the near-coplanar class; kept in
+// `tests/fuzz_findings/booleans/round17_fork/` (named by the artifact's hash), not minimised. By
+// kind: 17 not closed, 16 with the mesh's volume off the solid's, 2 closed with one needle, 3
+// with the solid's volume outside its bounds — those three, the worst, also have tests of their
+// own below.
+
+/// Replays an input of the round-17 fork run (`round17_fork/<hash>.bin`).
+fn replay_fork(hash: &str) {
+    replay_file(&format!("round17_fork/{hash}"));
+}
+
+/// Every input of the round-17 fork run, replayed; the failures listed.
+#[test]
+#[ignore = "open: near-coplanar — 38 inputs of round 17's fork run fail with tiny rotations on (17 not closed, 16 mesh volume off the solid's, 2 needles, 3 volume out of bounds), all pass with them off"]
+fn the_round_17_fork_run_near_coplanar_inputs() {
+    let dir = format!(
+        "{}/tests/fuzz_findings/booleans/round17_fork",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    names.sort();
+    assert_eq!(names.len(), 38);
+    let mut failures = Vec::new();
+    for path in &names {
+        let data = std::fs::read(path).unwrap();
+        assert!(
+            program::run(&data, false).is_ok(),
+            "{path:?} fails without tiny rotations"
+        );
+        if let Err(e) = program::run(&data, true) {
+            failures.push(format!(
+                "{}: {e}",
+                path.file_name().unwrap().to_string_lossy()
+            ));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} failing:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// From the fork run (crash-33894a02…, 84 bytes): a unit cube turned 1e-7° less a box turned
+/// 1e-9°, intersected with another box turned 1e-9° that nearly holds the same cut: step 1's
+/// solid has volume 1.5e-12 and no triangles (a sliver of flat shells). Intersected with a
+/// 0.625 × 0.625 × 0.125 slab turned 1e-9° at step 2 it grows to 7.9e-6: an intersection larger
+/// than an operand.
+#[test]
+#[ignore = "open: near-coplanar — an intersection with a flat 1.5e-12 remnant comes out 7.9e-6"]
+fn intersection_with_a_flat_remnant_grows() {
+    replay_fork("33894a02");
+}
+
+/// From the fork run (crash-9f0af865…, 85 bytes): an OBJ slab 0.625 × 0.125 × 1.125 turned 1e-8°
+/// united with a 0.125 cube at the same centre, then with a 0.125 × 0.125 × 0.875 bar there
+/// unturned: step 1's union has volume 0.0878905789, 4.6e-8 below the first operand's
+/// 0.0878906250.
+#[test]
+#[ignore = "open: near-coplanar — a union 4.6e-8 below its larger operand"]
+fn union_with_a_bar_below_its_larger_operand() {
+    replay_fork("9f0af865");
+}
+
+/// From the fork run (crash-c88c23a3…, 80 bytes): a unit cube turned 1e-4° united with a box
+/// turned 1e-7° (2.7123164321 together), then with a cylinder of radius 0.5625 unturned at
+/// (−0.5, −0.5, −0.25): step 1's union has volume 2.7123103578, 6.1e-6 below the first operand.
+#[test]
+#[ignore = "open: near-coplanar — a union 6.1e-6 below its larger operand"]
+fn union_with_a_cylinder_below_its_larger_operand() {
+    replay_fork("c88c23a3");
+}
