@@ -388,3 +388,47 @@ fn scene_bsp_route_less_a_second_bake_of_the_same_boss() {
     let rest = reduced.to_solid(&options).unwrap();
     assert!(rest.is_empty(), "reduced: {}", rest.to_mesh().report());
 }
+
+/// Found by a 10-minute run of the `scenes` target in round 17 (libFuzzer seed 1703, artifact
+/// crash-ab383ffc…, after 2.12 M executions at about 480 s), not minimised (`bsp_11`): a bracket
+/// variant whose bore (radius 1.45) takes the whole boss, one of whose mounting holes sits at
+/// z = −1.4·10¹⁰, far outside the scene. The coarse BSP route left 18 boundary edges (194
+/// triangles, volume 3.4292); with the children removed while it failed, the bracket less the
+/// bore and three holes came out at volume 1.531 where it is 3.392 with the far hole anywhere
+/// within 10⁶. The far cylinder is within the reach along its axis (y), so `reach` kept it
+/// whole; united with the near holes, its coordinates of 10¹⁰ set the tolerance of the booleans
+/// it entered. The BSP route now leaves out a primitive wholly outside the scene's box (nothing
+/// there is part of the scene; `sdf/bsp_route.rs`, `Ctx::solid`), so the far hole changes
+/// nothing: the same volume as the document without it.
+#[test]
+fn scene_bsp_route_of_a_bracket_with_a_hole_1e10_away() {
+    let (scene, options, solid) = coarse_route("bsp_11");
+    if let Err(e) = scene_check::check_bsp_route(&scene) {
+        panic!("bsp_11: {e}");
+    }
+    let mesh = solid.to_mesh();
+    let report = mesh.report();
+    assert!(
+        report.is_closed_manifold()
+            && report.needles == 0
+            && report.shells.len() == 1
+            && report.genus == Some(2),
+        "bsp_11: {report}"
+    );
+    let mut doc: serde_json::Value = serde_json::from_str(&finding_json("bsp_11")).unwrap();
+    let holes = doc["tree"]["children"][3]["children"]
+        .as_array_mut()
+        .unwrap();
+    assert_eq!(holes[3]["pos"][2], -14444444444.0);
+    holes.pop();
+    let without = bspcsg::Scene::from_json_str(&doc.to_string()).unwrap();
+    assert_eq!(without.bbox(), scene.bbox());
+    let expected = without.to_solid(&options).unwrap().volume();
+    assert!(
+        (mesh.volume() - expected).abs() < 1e-12 * expected
+            && (solid.volume() - expected).abs() < 1e-12 * expected,
+        "bsp_11: mesh volume {}, solid's {}, without the far hole {expected}",
+        mesh.volume(),
+        solid.volume()
+    );
+}

@@ -351,7 +351,15 @@ impl Ctx<'_> {
                             let local_box = local.bbox();
                             let world = local.transform(frame.to_world)?;
                             check_thickness(&local_box, &world, &frame)?;
-                            done.push(world.with_source(*material));
+                            // Nothing outside the scene's box is part of the scene (see
+                            // `reach`): a primitive wholly outside it is empty there, and left
+                            // whole its far coordinates would set the tolerance of every
+                            // boolean it enters.
+                            done.push(if world.bbox().overlaps(&self.world, 0.0) {
+                                world.with_source(*material)
+                            } else {
+                                Solid::empty()
+                            });
                         }
                     }
                 }
