@@ -181,6 +181,9 @@ impl Ctx<'_> {
                 NodeKind::Op { .. } => {}
                 NodeKind::Leaf { shape, .. } => {
                     let frame = parent.child(&node.transform);
+                    if self.outside_scene(shape, &frame) {
+                        continue;
+                    }
                     let (p, c) = self.estimate(shape, &frame)?;
                     if p > 6 {
                         round = round.saturating_add(c);
@@ -347,19 +350,15 @@ impl Ctx<'_> {
                         }
                         NodeKind::Leaf { shape, material } => {
                             let frame = parent.child(&node.transform);
+                            if self.outside_scene(shape, &frame) {
+                                done.push(Solid::empty());
+                                continue;
+                            }
                             let local = self.tessellate(shape, &frame)?;
                             let local_box = local.bbox();
                             let world = local.transform(frame.to_world)?;
                             check_thickness(&local_box, &world, &frame)?;
-                            // Nothing outside the scene's box is part of the scene (see
-                            // `reach`): a primitive wholly outside it is empty there, and left
-                            // whole its far coordinates would set the tolerance of every
-                            // boolean it enters.
-                            done.push(if world.bbox().overlaps(&self.world, 0.0) {
-                                world.with_source(*material)
-                            } else {
-                                Solid::empty()
-                            });
+                            done.push(world.with_source(*material));
                         }
                     }
                 }

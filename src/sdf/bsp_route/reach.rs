@@ -16,6 +16,7 @@ use crate::error::Result;
 use crate::geom::Aabb;
 use crate::primitives;
 use crate::sdf::eval::map_box;
+use crate::sdf::shapes::Shape;
 use crate::sdf::tree::Frame;
 use crate::solid::Solid;
 
@@ -40,6 +41,15 @@ impl Ctx<'_> {
         let scene = map_box(&to_local, &self.world);
         (reach.min.is_finite() && reach.max.is_finite() && !scene.is_empty())
             .then_some(Reach { reach, scene })
+    }
+
+    /// True when a primitive's own box, placed in the world, misses the scene's box. Nothing
+    /// of it is then part of the scene, and left whole its far coordinates would set the
+    /// tolerance of every boolean it enters: it is left out before any polygon is made,
+    /// counted against the budget or checked for thickness.
+    pub(super) fn outside_scene(&self, shape: &Shape, frame: &Frame) -> bool {
+        let placed = map_box(&frame.to_world, &shape.local_bounds());
+        !placed.is_empty() && !placed.overlaps(&self.world, 0.0)
     }
 
     /// A box of half sizes `half`, cut off at the reach where it passes beyond; empty when the
