@@ -18,7 +18,8 @@ pub(crate) struct Grid {
     /// Cells per axis.
     pub n: [usize; 3],
     /// Values inside by less than this count as outside (see `leaf::sample`):
-    /// [`MAX_MOVE`] times the lattice's extent, the same for every grid of one lattice.
+    /// [`MAX_MOVE`] times the diagonal of the lattice's extent, at most that of the largest
+    /// grid a bake may have (`Lattice::over`); the same for every grid of one lattice.
     pub hair: f64,
 }
 
@@ -128,14 +129,16 @@ impl Lattice {
         for i in 0..3 {
             let lo = (((region.min[i] - self.anchor[i]) / cell).floor() - 1.0).max(0.0);
             let hi = (((region.max[i] - self.anchor[i]) / cell).ceil() + 1.0).min(self.cells[i]);
-            // Indices beyond 2⁵² would no longer give points exactly: refused as too many
-            // cells, as a NaN is.
-            let cells = if hi <= (1u64 << 52) as f64 {
-                (hi - lo).max(1.0)
-            } else {
-                f64::NAN
-            };
-            n[i] = checked_cells(cells, cell)?;
+            // Indices beyond 2⁵² would no longer give points exactly.
+            if hi.is_nan() || hi > (1u64 << 52) as f64 {
+                return Err(Error::param(
+                    "cell",
+                    cell,
+                    "puts a part more than 2^52 cells from the corner of the scene's grid, \
+                     where grid points are no longer exact; use a larger cell",
+                ));
+            }
+            n[i] = checked_cells((hi - lo).max(1.0), cell)?;
             first[i] = lo as i64;
         }
         check_total(&n, cell)?;

@@ -286,14 +286,7 @@ fn triangulate_cell(frame: &LeafFrame, at: [usize; 3], w: &mut Work, part: &mut 
 /// Places each edge vertex at its refined root, held off the ends of its grid edge.
 fn place_edge_vertices(w: &Work, part: &mut Part) {
     for (i, &(e0, e1)) in w.edge.iter().enumerate() {
-        let (a, b, fa, fb) = (w.a[i], w.b[i], w.fa[i], w.fb[i]);
-        let t = fa / (fa - fb);
-        let t = if t.is_finite() {
-            t.clamp(0.0, 1.0)
-        } else {
-            0.5
-        };
-        let root = a + (b - a) * t;
+        let root = refine::probe(w.a[i], w.b[i], w.fa[i], w.fb[i]);
         // Where along the grid edge (axis-aligned, so one coordinate moves), held off its ends.
         let axis = (e1 - e0).abs().max_position();
         let s = ((root[axis] - e0[axis]) / (e1[axis] - e0[axis])).clamp(DELTA, 1.0 - DELTA);

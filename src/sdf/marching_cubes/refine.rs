@@ -75,7 +75,7 @@ pub(super) fn refine<S: Source + ?Sized>(field: &Field<S>, how: Refine, w: &mut 
 
 /// The bracket's linear guess (its middle where the values give none).
 #[inline]
-fn probe(a: DVec3, b: DVec3, fa: f64, fb: f64) -> DVec3 {
+pub(super) fn probe(a: DVec3, b: DVec3, fa: f64, fb: f64) -> DVec3 {
     let t = fa / (fa - fb);
     let t = if t.is_finite() {
         t.clamp(0.0, 1.0)
