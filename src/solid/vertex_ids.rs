@@ -5,6 +5,8 @@
 //! A solid made from a mesh carries it from the start; an exact operand without one (a
 //! primitive, a moved solid) has it made by each boolean it enters.
 
+use std::sync::OnceLock;
+
 use crate::hash::{KeyedHashMap, key};
 use crate::polygon::Polygon;
 
@@ -15,10 +17,17 @@ pub(crate) struct VertexIds {
     /// positions bit for bit (−0 taken as +0), and equal positions equal ids.
     ids: Vec<u32>,
     start: Vec<u32>,
-    /// The polygons around vertex `v` are `around[around_at[v]..around_at[v + 1]]`, ascending
-    /// (a polygon with a repeated corner as often as it has it).
-    around: Vec<u32>,
-    around_at: Vec<u32>,
+    vertices: usize,
+    /// Made when first asked: only an operand passed on indexed needs it.
+    around: OnceLock<Around>,
+}
+
+/// The polygons around vertex `v` are `list[at[v]..at[v + 1]]`, ascending (a polygon with a
+/// repeated corner as often as it has it).
+#[derive(Debug)]
+struct Around {
+    list: Vec<u32>,
+    at: Vec<u32>,
 }
 
 impl VertexIds {
@@ -36,30 +45,32 @@ impl VertexIds {
             }
         }
         start.push(ids.len() as u32);
-        let n = id_of.len();
-        drop(id_of);
-        // A compressed table by vertex id.
-        let mut around_at = vec![0u32; n + 1];
-        for &id in &ids {
-            around_at[id as usize + 1] += 1;
-        }
-        for v in 0..n {
-            around_at[v + 1] += around_at[v];
-        }
-        let mut fill = around_at.clone();
-        let mut around = vec![0u32; ids.len()];
-        for (i, s) in start.windows(2).enumerate() {
-            for &id in &ids[s[0] as usize..s[1] as usize] {
-                around[fill[id as usize] as usize] = i as u32;
-                fill[id as usize] += 1;
-            }
-        }
         VertexIds {
             ids,
             start,
-            around,
-            around_at,
+            vertices: id_of.len(),
+            around: OnceLock::new(),
         }
+    }
+
+    /// The table of polygons around each vertex, compressed by vertex id.
+    fn make_around(&self) -> Around {
+        let mut at = vec![0u32; self.vertices + 1];
+        for &id in &self.ids {
+            at[id as usize + 1] += 1;
+        }
+        for v in 0..self.vertices {
+            at[v + 1] += at[v];
+        }
+        let mut fill = at.clone();
+        let mut list = vec![0u32; self.ids.len()];
+        for (i, s) in self.start.windows(2).enumerate() {
+            for &id in &self.ids[s[0] as usize..s[1] as usize] {
+                list[fill[id as usize] as usize] = i as u32;
+                fill[id as usize] += 1;
+            }
+        }
+        Around { list, at }
     }
 
     /// Whether these are the vertex ids of `polys` (its polygon and corner counts match).
@@ -80,11 +91,12 @@ impl VertexIds {
     /// The polygons around vertex `v`.
     #[inline]
     pub(crate) fn around(&self, v: u32) -> &[u32] {
-        &self.around[self.around_at[v as usize] as usize..self.around_at[v as usize + 1] as usize]
+        let Around { list, at } = self.around.get_or_init(|| self.make_around());
+        &list[at[v as usize] as usize..at[v as usize + 1] as usize]
     }
 
     pub(crate) fn vertex_count(&self) -> usize {
-        self.around_at.len() - 1
+        self.vertices
     }
 }
 
