@@ -462,3 +462,34 @@ fn a_huge_primitive_outside_the_scene_is_not_counted_against_its_budget() {
         .unwrap();
     assert_eq!(solid.volume(), 1.0);
 }
+
+/// Found in round 17 by a reader of the shared-lattice change, not by the fuzz target
+/// (`bsp_12`): random scenes `op(smooth_union(S, X₁), smooth_union(S, X₂))` holding one sphere
+/// S in both unions; this one, a difference, is the one of 17 run that got worse. At be1b9bf
+/// (each smooth union baked on a grid of its own) it closed, with 166,768 triangles (slivers
+/// between the two walls of S) and volume 0.35927. Since the bakes share one lattice and
+/// converge their roots (bsp_10's fix) it has 7,024 triangles, 2 shells, 4 boundary edges and
+/// volume 0.3590904, refused by the command line (exit 2); with 3 refinement steps on the
+/// shared lattice instead of converged roots, 443 boundary edges. Four other scenes of the 17
+/// (5,443, 597, 2 and 4,142 boundary edges before) close since that change. Not traced: at the
+/// rim of a blend the two fields stop agreeing beside the surface, and the two bakes may
+/// also decide an ambiguous face of a cell differently.
+#[test]
+#[ignore = "open: two smooth unions sharing a sphere, differenced — 4 boundary edges since the bakes share one lattice"]
+fn scene_bsp_route_of_two_smooth_unions_sharing_a_sphere_differenced() {
+    let scene = finding_scene("bsp_12");
+    let solid = scene
+        .to_solid(&bspcsg::TessellationOptions::default())
+        .unwrap();
+    let report = solid.to_mesh().report();
+    assert!(
+        report.is_closed_manifold() && report.needles == 0,
+        "bsp_12: {report}"
+    );
+    // The SDF route gives 0.35883 at its default cell, be1b9bf's BSP route 0.35927.
+    assert!(
+        (report.volume - 0.3590).abs() < 2e-3 * 0.3590,
+        "bsp_12: volume {}",
+        report.volume
+    );
+}
