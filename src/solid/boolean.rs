@@ -1,9 +1,12 @@
 //! The one boolean operation, by the csg.js rules; the named wrappers, operators and n-ary
 //! reductions on top of it are in `ops.rs`.
 
+use std::sync::Arc;
+
 use glam::DVec3;
 
 use super::far::{assemble, keep_far};
+use super::vertex_ids::VertexIds;
 use super::{PrecisionLoss, Solid};
 use crate::bsp::{Coplanar, FOCUS_MARGIN, Focus, Label, Surface, Tree};
 use crate::geom::{Aabb, Plane, Tolerance};
@@ -140,8 +143,10 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
     // its far part can be passed on indexed; cut down, it has T-junctions.
     let flat = WELD_TOLERANCES * eps;
     let (a_exact, b_exact) = (a.carried_eps() == 0.0, b.carried_eps() == 0.0);
-    let (a, a_cut) = cut_down(a.into_polygons(), &box_b, eps);
-    let (b, b_cut) = cut_down(b.into_polygons(), &box_a, eps);
+    let (a, a_ids) = a.into_parts();
+    let (b, b_ids) = b.into_parts();
+    let (a, a_cut) = cut_down(a, &box_b, eps);
+    let (b, b_cut) = cut_down(b, &box_a, eps);
     // Beside a huge operand neither is indexed: the cross-check's huge-box case (Cray) came out
     // with a flat shell through the indexed pass, closed through the full one (not yet
     // understood).
@@ -157,19 +162,25 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
         BoolOp::Union => Label::Outside,
         BoolOp::Intersection | BoolOp::Difference => Label::Inside,
     };
+    // The operands' vertex ids: their own, or made here (polygons cut down are new ones).
+    let ids_of = |polys: &[Polygon], own: Option<Arc<VertexIds>>, cut: bool| {
+        own.filter(|_| !cut)
+            .unwrap_or_else(|| Arc::new(VertexIds::new(polys)))
+    };
+    let (a_ids, b_ids) = (ids_of(&a, a_ids, a_cut), ids_of(&b, b_ids, b_cut));
     let (surface_a, surface_b) = rayon::join(|| Surface::new(&a, eps), || Surface::new(&b, eps));
     let margin = FOCUS_MARGIN * eps;
     let (near_a, near_b) = surface_a.near_each_other(&surface_b, margin);
     let (a_kept, b_kept) = rayon::join(
         || {
             let tree_b = focused_tree(&b, &near_b, &a, &near_a, eps);
-            let far = keep_far(&a, &near_a, &surface_b, a_keep, a_flat);
+            let far = keep_far(&a, &a_ids, &near_a, &surface_b, a_keep, a_flat);
             let near = tree_b.clip(pick(&a, &near_a), a_keep, a_rule, &surface_b);
             (far, near.into_iter().map(|c| c.polygon).collect())
         },
         || {
             let tree_a = focused_tree(&a, &near_a, &b, &near_b, eps);
-            let far = keep_far(&b, &near_b, &surface_a, b_keep, b_flat);
+            let far = keep_far(&b, &b_ids, &near_b, &surface_a, b_keep, b_flat);
             let first = tree_a.clip(pick(&b, &near_b), b_keep, Coplanar::SameFront, &surface_a);
             let (again, done): (Vec<_>, Vec<_>) = first.into_iter().partition(|c| c.coplanar);
             let again: Vec<Polygon> = again.into_iter().map(|c| c.polygon).collect();

@@ -3,9 +3,10 @@
 
 use crate::bsp::{Label, Surface};
 use crate::disjoint_sets::DisjointSets;
-use crate::hash::{KeyedHashMap, key};
 use crate::mesh::repair::Indexed;
 use crate::polygon::Polygon;
+
+use super::vertex_ids::VertexIds;
 
 /// One operand's kept far polygons: `polygons[..core]` the core, `polygons[core..core + rim]`
 /// the rim, both with their corners' vertex ids in `ids`; the rest (an operand not indexed)
@@ -20,8 +21,8 @@ pub(super) struct Far {
 }
 
 /// The polygons away from the other surface whose region is labelled `keep`. Polygons sharing a
-/// vertex, both away from the other surface, lie in the same region, so each connected group
-/// needs one ray.
+/// vertex (by `ids`, the vertex ids of `polys`), both away from the other surface, lie in
+/// the same region, so each connected group needs one ray.
 ///
 /// With `flat` (the weld distance of `to_mesh`, for an operand whose polygons share their
 /// vertices bit for bit), they are also sorted into core and rim: a kept polygon is core when
@@ -30,35 +31,31 @@ pub(super) struct Far {
 /// that `to_mesh` could merge as coplanar (each's corners within `flat` of the other's plane).
 pub(super) fn keep_far(
     polys: &[Polygon],
+    ids: &VertexIds,
     near: &[bool],
     other: &Surface,
     keep: Label,
     flat: Option<f64>,
 ) -> Far {
+    debug_assert!(ids.fits(polys));
     let mut groups = DisjointSets::new(polys.len());
-    let mut id_of: KeyedHashMap<[u64; 3], u32> =
-        KeyedHashMap::with_capacity_and_hasher(polys.len(), Default::default());
-    // Per vertex id, the first polygon using it; per polygon, where its ids start.
-    let mut first: Vec<u32> = Vec::with_capacity(polys.len());
-    let mut start: Vec<u32> = Vec::with_capacity(polys.len() + 1);
-    let mut ids: Vec<u32> = Vec::with_capacity(polys.len() * 3);
-    for (i, p) in polys.iter().enumerate() {
-        start.push(ids.len() as u32);
-        if near[i] {
-            continue;
-        }
-        for &v in p.vertices() {
-            let next = first.len() as u32;
-            let id = *id_of.entry(key(v)).or_insert(next);
-            if id == next {
-                first.push(i as u32);
+    // Per vertex id, the first far polygon using it, and its id among the far vertices
+    // (numbered as they first appear).
+    let mut first = vec![u32::MAX; ids.vertex_count()];
+    let mut renumber = vec![u32::MAX; ids.vertex_count()];
+    let mut far_count = 0u32;
+    for (i, _) in near.iter().enumerate().filter(|(_, n)| !**n) {
+        for &id in ids.corners(i) {
+            let f = &mut first[id as usize];
+            if *f == u32::MAX {
+                *f = i as u32;
+                renumber[id as usize] = far_count;
+                far_count += 1;
             } else {
-                groups.union(i, first[id as usize] as usize);
+                groups.union(i, *f as usize);
             }
-            ids.push(id);
         }
     }
-    start.push(ids.len() as u32);
     let mut label: Vec<Option<Label>> = vec![None; polys.len()];
     let mut kept: Vec<u32> = Vec::new();
     for (i, p) in polys.iter().enumerate() {
@@ -77,64 +74,57 @@ pub(super) fn keep_far(
             ..Far::default()
         };
     };
-    let corners = |i: u32| &ids[start[i as usize] as usize..start[i as usize + 1] as usize];
-    // Vertices that cannot be core: used by a near polygon, or where two polygons may merge.
-    let mut open = vec![false; first.len()];
-    for (i, p) in polys.iter().enumerate() {
-        if near[i] {
-            for v in p.vertices() {
-                if let Some(&id) = id_of.get(&key(*v)) {
-                    open[id as usize] = true;
-                }
-            }
+    // Vertices that cannot be core: used by a near polygon, or, found when first asked, where
+    // two polygons around it may merge (all polygons around a vertex of a kept one are kept,
+    // or one of them is near).
+    let mut open = vec![Open::Unknown; ids.vertex_count()];
+    for (i, _) in near.iter().enumerate().filter(|(_, n)| **n) {
+        for &id in ids.corners(i) {
+            open[id as usize] = Open::Yes;
         }
     }
-    drop(id_of);
-    // The kept polygons around each vertex (a compressed table by vertex id).
-    let mut around_at = vec![0u32; first.len() + 1];
-    for &i in &kept {
-        for &id in corners(i) {
-            around_at[id as usize + 1] += 1;
+    let mut is_open = |id: u32| match open[id as usize] {
+        Open::Yes => true,
+        Open::No => false,
+        Open::Unknown => {
+            let star = ids.around(id);
+            let any = star.iter().enumerate().any(|(k, &x)| {
+                star[k + 1..]
+                    .iter()
+                    .any(|&y| mergeable(&polys[x as usize], &polys[y as usize], flat))
+            });
+            open[id as usize] = if any { Open::Yes } else { Open::No };
+            any
         }
-    }
-    for v in 0..first.len() {
-        around_at[v + 1] += around_at[v];
-    }
-    let mut fill = around_at.clone();
-    let mut around = vec![0u32; around_at[first.len()] as usize];
-    for &i in &kept {
-        for &id in corners(i) {
-            around[fill[id as usize] as usize] = i;
-            fill[id as usize] += 1;
-        }
-    }
-    for v in 0..first.len() {
-        if open[v] {
-            continue;
-        }
-        let star = &around[around_at[v] as usize..around_at[v + 1] as usize];
-        open[v] = star.iter().enumerate().any(|(k, &x)| {
-            star[k + 1..]
-                .iter()
-                .any(|&y| mergeable(&polys[x as usize], &polys[y as usize], flat))
-        });
-    }
+    };
     let (mut core, mut rim): (Vec<u32>, Vec<u32>) = kept
         .into_iter()
-        .partition(|&i| corners(i).iter().all(|&id| !open[id as usize]));
+        .partition(|&i| ids.corners(i as usize).iter().all(|&id| !is_open(id)));
     let (n_core, n_rim) = (core.len(), rim.len());
     core.append(&mut rim);
-    let mut out_ids = Vec::with_capacity(core.iter().map(|&i| corners(i).len()).sum());
+    let mut out_ids = Vec::with_capacity(core.iter().map(|&i| ids.corners(i as usize).len()).sum());
     for &i in &core {
-        out_ids.extend_from_slice(corners(i));
+        out_ids.extend(
+            ids.corners(i as usize)
+                .iter()
+                .map(|&id| renumber[id as usize]),
+        );
     }
     Far {
         polygons: core.iter().map(|&i| polys[i as usize].clone()).collect(),
         ids: out_ids,
         core: n_core,
         rim: n_rim,
-        vertex_count: first.len() as u32,
+        vertex_count: far_count,
     }
+}
+
+/// Whether a vertex may not be core, where known.
+#[derive(Clone, Copy)]
+enum Open {
+    Unknown,
+    Yes,
+    No,
 }
 
 /// Whether `to_mesh` could put the two polygons in one coplanar region: one source, facing the
@@ -276,6 +266,31 @@ mod tests {
         let b = a.clone().translate(DVec3::new(0.3, 0.4, 0.0)).unwrap();
         for op in BoolOp::ALL {
             same_as_soup(&a, &b, op);
+        }
+    }
+
+    #[test]
+    fn a_mesh_solids_vertex_ids_give_what_ones_made_per_boolean_give() {
+        let mut mesh = Solid::sphere(1.0, 40, 20).unwrap().to_mesh();
+        let a = Solid::from_mesh(&mesh).unwrap();
+        for p in &mut mesh.positions {
+            *p += DVec3::new(0.4, 0.3, 0.1);
+        }
+        let b = Solid::from_mesh(&mesh).unwrap().with_source(2);
+        // Moved, a solid drops its vertex ids; a new source keeps them.
+        assert!(a.vertex_ids.is_some() && b.vertex_ids.is_some());
+        assert!(a.clone().translate(DVec3::X).unwrap().vertex_ids.is_none());
+        let bare = |s: &Solid| Solid::from_polygons(s.polygons().to_vec());
+        for op in BoolOp::ALL {
+            let (own, made) = (boolean(&a, &b, op), boolean(&bare(&a), &bare(&b), op));
+            assert_eq!(own.polygons(), made.polygons(), "{op}");
+            let (x, y) = (own.index().unwrap(), made.index().unwrap());
+            assert!(x.core > 0, "{op}");
+            assert_eq!(
+                (x.core, &x.rim, &x.ids, x.vertex_count),
+                (y.core, &y.rim, &y.ids, y.vertex_count),
+                "{op}"
+            );
         }
     }
 

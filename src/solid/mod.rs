@@ -17,15 +17,20 @@ mod ops;
 mod overlapping;
 mod primitives;
 mod transform;
+mod vertex_ids;
 
 pub use boolean::{BoolOp, ParseBoolOpError, boolean, boolean_with};
 pub use measure::{Containment, PointClassifier};
 pub use ops::boolean_all;
 
+use std::sync::Arc;
+
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, Tolerance};
 use crate::mesh::repair::Indexed;
 use crate::polygon::Polygon;
+
+use vertex_ids::VertexIds;
 
 /// A solid bounded by convex planar polygons whose normals point outward.
 ///
@@ -43,6 +48,9 @@ pub struct Solid {
     /// The polygons a boolean passed through whole, with vertex ids (see [`Indexed`]): kept
     /// only while the polygons are the boolean's own, so any change to them drops it.
     index: Option<Indexed>,
+    /// The vertex ids of the polygons' corners, for a solid made from a mesh (see
+    /// [`VertexIds`]): kept only while the polygons are the mesh's own.
+    vertex_ids: Option<Arc<VertexIds>>,
 }
 
 /// A boolean whose operands met in a region too small for the tolerance it had to use: the
@@ -86,6 +94,16 @@ impl Solid {
             eps: 0.0,
             lost: None,
             index: None,
+            vertex_ids: None,
+        }
+    }
+
+    /// [`Solid::from_polygons`] for the polygons of a mesh, with their vertex ids.
+    pub(crate) fn from_mesh_polygons(polygons: Vec<Polygon>) -> Self {
+        let ids = VertexIds::new(&polygons);
+        Solid {
+            vertex_ids: Some(Arc::new(ids)),
+            ..Solid::from_polygons(polygons)
         }
     }
 
@@ -95,6 +113,7 @@ impl Solid {
             eps,
             lost,
             index: None,
+            vertex_ids: None,
         }
     }
 
@@ -102,6 +121,11 @@ impl Solid {
     pub(crate) fn with_index(mut self, index: Option<Indexed>) -> Self {
         self.index = index;
         self
+    }
+
+    /// Takes the polygons and their vertex ids, if the solid has them.
+    pub(crate) fn into_parts(self) -> (Vec<Polygon>, Option<Arc<VertexIds>>) {
+        (self.polygons, self.vertex_ids)
     }
 
     /// The index of the polygons passed through whole, for `to_mesh`.

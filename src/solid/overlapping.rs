@@ -36,7 +36,7 @@ pub(crate) fn solid_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Result<
             }
             union_of_shells(mesh, options, &crossing.pairs)
         }
-        other => other.map(Solid::from_polygons),
+        other => other.map(Solid::from_mesh_polygons),
     }
 }
 
@@ -87,7 +87,7 @@ pub(crate) fn union_of_shells(
     };
     let mut parts: Vec<(Mesh, Solid)> = outer
         .into_iter()
-        .map(|m| polygons_from_mesh(&m, &single).map(|p| (m, Solid::from_polygons(p))))
+        .map(|m| polygons_from_mesh(&m, &single).map(|p| (m, Solid::from_mesh_polygons(p))))
         .collect::<Result<_>>()?;
     // Judged against the outward shells alone, before any takes a cavity in.
     let around: Vec<(PointClassifier, f64)> = parts
@@ -120,7 +120,7 @@ pub(crate) fn union_of_shells(
         let m = &mut parts[i].0;
         m.triangles.extend_from_slice(&cavity.triangles);
         m.sources.extend_from_slice(&cavity.sources);
-        parts[i].1 = Solid::from_polygons(polygons_from_mesh(m, &single)?);
+        parts[i].1 = Solid::from_mesh_polygons(polygons_from_mesh(m, &single)?);
     }
     Ok(boolean_all(
         parts.into_iter().map(|(_, s)| s),

@@ -13,6 +13,7 @@ impl Solid {
     #[must_use]
     pub fn flipped(mut self) -> Self {
         self.index = None;
+        self.vertex_ids = None;
         for p in &mut self.polygons {
             p.flip();
         }
@@ -141,6 +142,7 @@ impl Solid {
             eps: self.eps * det.abs().cbrt(),
             lost: self.lost,
             index: None,
+            vertex_ids: None,
         })
     }
 
@@ -159,6 +161,7 @@ impl Solid {
             eps: self.eps,
             lost: self.lost,
             index: None,
+            vertex_ids: None,
         }
     }
 }
