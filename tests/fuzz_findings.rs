@@ -593,8 +593,11 @@ fn difference_of_spheres_turned_alike_about_close_axes_leaves_a_flat_shell() {
 // with tiny rotations off, all the near-coplanar class. 58 failed on main before the judging by
 // the crossing line too (795a405); these three passed there and fail since (not minimised).
 
-/// 42 bytes: step 1 is not a closed 2-manifold (114 triangles, 2 shells, volume 0.0039062500,
-/// right to 1e-10); closed on 795a405.
+/// 42 bytes: step 1 is not a closed 2-manifold; closed on 795a405. A 0.125 × 0.125 × 0.375 box
+/// turned 1e-8° united with a 0.125 cube turned 1e-7° at the same centre, less the OBJ cube
+/// there unturned. When found: 114 triangles, 2 shells, volume right to 1e-10; on main be1b9bf
+/// (round 17): 123 triangles, 7 boundary edges on the cube's faces x = −0.4375 and y = −0.5625,
+/// and the solid's volume 0.0039079589 is 1.7e-6 above the two end pieces' 0.00390625.
 #[test]
 #[ignore = "open: near-coplanar, since the crossing-line judgement — not a closed 2-manifold at step 1"]
 fn open_at_step_1_since_the_crossing_line_judgement() {
@@ -615,4 +618,117 @@ fn open_at_step_3_since_the_crossing_line_judgement() {
 #[ignore = "open: near-coplanar, since the crossing-line judgement — mesh volume off the solid's at step 3"]
 fn mesh_volume_off_at_step_3_since_the_crossing_line_judgement() {
     replay_file("mesh_volume_step_3_crossing_line_judgement");
+}
+
+/// Found by a 10-minute run of the `booleans` target in round 17 (libFuzzer seed 1701, artifact
+/// crash-62760edd…, after 2,037 executions at about 14 s), not minimised; passes with tiny
+/// rotations off. A 1 × 1.5 × 1 box is nicked at its corner (−0.5, 0, −0.5) by a unit cube
+/// turned 0.17 rad (9e-11 of volume), then less a 1 × 0.125 × 1 slab through its middle turned
+/// 1e-6° (1.7e-8 rad), whose four sides lie a hair off the box's. Step 2's solid has volume
+/// 1.3645833 where the two pieces make 1.375: 1/96 short. Traced to its polygons: above y = 0 the
+/// box's face z = −0.5 lost the slab's strip (0.6875 left, right) while the slab's own face there
+/// was kept, turned inward (area 0.0625, normal +z at z = −0.5): each judged inside the other,
+/// and (1/3)(0.5)(0.0625) = 1/96 is the volume it takes. On the other three sides both were kept
+/// (a double layer: volume right, not manifold). The plain box (no nick) less the same slab is
+/// closed with volume right to 1e-10, so the nick's small polygons at that corner, on the slab's
+/// crossing lines, are part of it. Not traced into `Polygon::split` for lack of time.
+#[test]
+#[ignore = "open: near-coplanar — a nicked box less a slab turned 1e-6° keeps the slab's face inside the box while dropping the box's (volume 1/96 short)"]
+fn nicked_box_less_a_slab_turned_1e_6_degrees() {
+    replay_file("nicked_box_less_slab_turned_1e-6");
+}
+
+/// Found by a second `booleans` run in round 17 (libFuzzer seed 1705, artifact crash-0d0e67ae…,
+/// after 2,198 executions at about 7 s), not minimised; passes with tiny rotations off. A 0.125
+/// cube at (−0.5, −0.5, −0.5), cut by two boxes turned freely (steps 0 and 1: 0.0019243 left), then
+/// united with a 0.125 × 0.125 × 1.125 bar turned 1e-9° (1.7e-11 rad) whose face x = −0.4375
+/// lies a hair off the cube's. Step 2 has the right volume (0.0195024018, the sum to 5e-14) but
+/// 4 boundary edges: a slit on x = −0.4375, two vertices at (−0.4375, −0.5625, −0.54112) not
+/// joined, each ending the edges to (−0.4375, −0.5625, −0.4375) and (−0.4375, −0.52016, −0.4375).
+/// The solid keeps, where the two faces overlap, both a piece of the cube's face (normal +x) and
+/// two of the bar's (normal −x, their corner 1.7e-12 from the cube's): a union should drop both
+/// there; the mesh's repair leaves the double layer's rim as the slit.
+#[test]
+#[ignore = "open: near-coplanar — a cut cube united with a bar turned 1e-9° on a shared face leaves a slit (4 boundary edges)"]
+fn union_with_a_bar_turned_1e_9_degrees_on_a_cut_cube() {
+    replay_file("union_with_bar_turned_1e-9_on_a_cut_cube");
+}
+
+// Found by a 10-minute `booleans` run in round 17 with libFuzzer's fork mode (seed 1706,
+// `-fork=1 -ignore_crashes=1`, 38,826 executions in 602 s): 38 failing inputs, every one passing
+// with tiny rotations off (checked one by one), so all the near-coplanar class; kept in
+// `tests/fuzz_findings/booleans/round17_fork/` (named by the artifact's hash), not minimised. By
+// kind: 17 not closed, 16 with the mesh's volume off the solid's, 2 closed with one needle, 3
+// with the solid's volume outside its bounds — those three, the worst, also have tests of their
+// own below.
+
+/// Replays an input of the round-17 fork run (`round17_fork/<hash>.bin`).
+fn replay_fork(hash: &str) {
+    replay_file(&format!("round17_fork/{hash}"));
+}
+
+/// Every input of the round-17 fork run, replayed; the failures listed.
+#[test]
+#[ignore = "open: near-coplanar — 38 inputs of round 17's fork run fail with tiny rotations on (17 not closed, 16 mesh volume off the solid's, 2 needles, 3 volume out of bounds), all pass with them off"]
+fn the_round_17_fork_run_near_coplanar_inputs() {
+    let dir = format!(
+        "{}/tests/fuzz_findings/booleans/round17_fork",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let mut names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    names.sort();
+    assert_eq!(names.len(), 38);
+    let mut failures = Vec::new();
+    for path in &names {
+        let data = std::fs::read(path).unwrap();
+        assert!(
+            program::run(&data, false).is_ok(),
+            "{path:?} fails without tiny rotations"
+        );
+        if let Err(e) = program::run(&data, true) {
+            failures.push(format!(
+                "{}: {e}",
+                path.file_name().unwrap().to_string_lossy()
+            ));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} failing:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// From the fork run (crash-33894a02…, 84 bytes): a unit cube turned 1e-7° less a box turned
+/// 1e-9°, intersected with another box turned 1e-9° that nearly holds the same cut: step 1's
+/// solid has volume 1.5e-12 and no triangles (a sliver of flat shells). Intersected with a
+/// 0.625 × 0.625 × 0.125 slab turned 1e-9° at step 2 it grows to 7.9e-6: an intersection larger
+/// than an operand.
+#[test]
+#[ignore = "open: near-coplanar — an intersection with a flat 1.5e-12 remnant comes out 7.9e-6"]
+fn intersection_with_a_flat_remnant_grows() {
+    replay_fork("33894a02");
+}
+
+/// From the fork run (crash-9f0af865…, 85 bytes): an OBJ slab 0.625 × 0.125 × 1.125 turned 1e-8°
+/// united with a 0.125 cube at the same centre, then with a 0.125 × 0.125 × 0.875 bar there
+/// unturned: step 1's union has volume 0.0878905789, 4.6e-8 below the first operand's
+/// 0.0878906250.
+#[test]
+#[ignore = "open: near-coplanar — a union 4.6e-8 below its larger operand"]
+fn union_with_a_bar_below_its_larger_operand() {
+    replay_fork("9f0af865");
+}
+
+/// From the fork run (crash-c88c23a3…, 80 bytes): a unit cube turned 1e-4° united with a box
+/// turned 1e-7° (2.7123164321 together), then with a cylinder of radius 0.5625 unturned at
+/// (−0.5, −0.5, −0.25): step 1's union has volume 2.7123103578, 6.1e-6 below the first operand.
+#[test]
+#[ignore = "open: near-coplanar — a union 6.1e-6 below its larger operand"]
+fn union_with_a_cylinder_below_its_larger_operand() {
+    replay_fork("c88c23a3");
 }

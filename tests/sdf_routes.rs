@@ -179,3 +179,42 @@ fn default_bakes_survive_float32() {
         assert_eq!(collapsed, 0, "{name}");
     }
 }
+
+/// The BSP route bakes every smooth subtree on the lattice of the scene's grid, each over the
+/// part around it. A sphere of radius 10⁻³ beside a box 1000 across, at a cell of 10⁻⁴: its
+/// bake is a small grid of a lattice 10⁷ cells across, and the values a hair inside count as
+/// outside with the hair of at most the largest grid a bake may have (0.028 of a cell). With
+/// the whole lattice's (1.7·10⁻³, more than the radius) the sphere was gone.
+#[test]
+fn a_small_smooth_part_of_a_large_scene_keeps_its_bake() {
+    let scene = Scene::from_json_str(
+        r#"{"op": "union", "children": [
+            {"kind": "sdf_primitive", "data": {"primitive_type": "box", "size": [1000, 1000, 1000]}},
+            {"op": "smooth_union", "smooth": "polynomial", "smooth_k": 0.0002, "children": [
+                {"kind": "sdf_primitive", "pos": [600, 0, 0],
+                 "data": {"primitive_type": "sphere", "radius": 0.001}}]}
+        ]}"#,
+    )
+    .unwrap();
+    let options = TessellationOptions {
+        tolerance: None,
+        cell: Some(1e-4),
+        max_angle: None,
+    };
+    let mesh = scene.to_solid(&options).unwrap().to_mesh();
+    let report = mesh.report();
+    assert!(
+        report.is_closed_manifold() && report.shells.len() == 2,
+        "{report}"
+    );
+    let sphere = report
+        .shells
+        .iter()
+        .map(|s| s.volume)
+        .fold(f64::INFINITY, f64::min);
+    let exact = 4.0 / 3.0 * std::f64::consts::PI * 1e-9;
+    assert!(
+        (sphere - exact).abs() < 0.05 * exact,
+        "sphere {sphere}, exact {exact}"
+    );
+}

@@ -6,7 +6,7 @@
 use glam::{DAffine3, DQuat, DVec2, DVec3};
 
 use super::eval::{Program, map_box};
-use super::marching_cubes::{BakeOptions, Grid, march};
+use super::marching_cubes::{Lattice, Refine, march};
 use super::scene::Scene;
 use super::shapes::Shape;
 use super::shapes2d::{Prim2, Shape2};
@@ -351,7 +351,15 @@ impl Ctx<'_> {
                             let local_box = local.bbox();
                             let world = local.transform(frame.to_world)?;
                             check_thickness(&local_box, &world, &frame)?;
-                            done.push(world.with_source(*material));
+                            // Nothing outside the scene's box is part of the scene (see
+                            // `reach`): a primitive wholly outside it is empty there, and left
+                            // whole its far coordinates would set the tolerance of every
+                            // boolean it enters.
+                            done.push(if world.bbox().overlaps(&self.world, 0.0) {
+                                world.with_source(*material)
+                            } else {
+                                Solid::empty()
+                            });
                         }
                     }
                 }
@@ -364,16 +372,19 @@ impl Ctx<'_> {
     fn bake(&self, id: NodeId, parent: Frame) -> Result<Solid> {
         let program = Program::compile(&self.scene.tree, id, parent)?;
         let bound = program.bound();
-        let opts = BakeOptions::with_cell(self.cell);
-        let Some(grid) = Grid::new(
-            &bound.bbox.intersection(&self.world.expanded(self.cell)),
-            &opts,
-        )?
+        // Every bake of the scene samples one lattice, that of the grid over the whole scene
+        // (its box grown by the cell), each on the part of it around its own bound: where two
+        // smooth subtrees hold the same surface (a shape in both), its vertices come out the
+        // same in both (the roots refined until they no longer move), so the booleans meet
+        // coincident faces, not walls 10⁻⁹ apart cut into slivers.
+        let scene = self.world.expanded(self.cell);
+        let Some(grid) =
+            Lattice::over(&scene, self.cell)?.around(&bound.bbox.intersection(&scene))?
         else {
             return Ok(Solid::empty());
         };
         super::bake_budget::check_bake_work(&program, &grid)?;
-        let mut mesh = march(&program, grid, opts.refine_steps)?;
+        let mut mesh = march(&program, grid, Refine::Converge)?;
         super::assign_sources(&program, &mut mesh);
         let polygons = (0..mesh.triangle_count())
             .filter_map(|t| Polygon::new(mesh.triangle(t).as_slice(), mesh.sources[t]))

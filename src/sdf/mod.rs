@@ -67,7 +67,11 @@ impl Scene {
             return Ok(Mesh::default());
         };
         bake_budget::check_bake_work(&self.program, &grid)?;
-        let mut mesh = marching_cubes::march(&self.program, grid, opts.refine_steps)?;
+        let mut mesh = marching_cubes::march(
+            &self.program,
+            grid,
+            marching_cubes::Refine::Steps(opts.refine_steps),
+        )?;
         assign_sources(&self.program, &mut mesh);
         // Where the surface passes within a hair of a grid vertex, the triangles of the cells
         // around it shrink to specks: flipped or collapsed away, the mesh staying closed.

@@ -4,10 +4,9 @@
 use glam::DVec3;
 
 use super::cull::Block;
-use super::refine::refine;
+use super::refine::{self, Refine};
 use super::table::{TABLE, corner_pos, edge_corners, face_connects, face_corners};
 use super::{DELTA, Field, Grid, Source};
-use crate::geom::MAX_MOVE;
 use crate::sdf::eval::Scratch;
 
 /// One block's share of the mesh, with local vertex indices.
@@ -35,6 +34,8 @@ pub(super) struct Work {
     pub(super) fb: Vec<f64>,
     pub(super) side: Vec<i8>,
     pub(super) probe: Vec<DVec3>,
+    /// The vertices still refined.
+    pub(super) active: Vec<u32>,
     pub(super) fprobe: Vec<f64>,
     pub(super) centres: Vec<(u32, [u32; 12], u8)>,
 }
@@ -43,7 +44,7 @@ pub(super) struct Work {
 pub(super) fn leaf<S: Source + ?Sized>(
     field: &Field<S>,
     b: &Block,
-    refine_steps: u32,
+    refine: Refine,
     w: &mut Work,
     part: &mut Part,
 ) {
@@ -65,7 +66,7 @@ pub(super) fn leaf<S: Source + ?Sized>(
             }
         }
     }
-    refine(field, refine_steps, w);
+    refine::refine(field, refine, w);
     place_edge_vertices(w, part);
     place_centre_vertices(w, part, first_tri);
 }
@@ -151,7 +152,7 @@ fn sample<S: Source + ?Sized>(field: &Field<S>, frame: &LeafFrame, w: &mut Work)
     // outside, not zero: at zero every crossing from that point starts on the point itself, and
     // refinement left those vertices about 1e-8 apart, which f32 files (STL, glTF) merge into
     // zero-area triangles.
-    let hair = MAX_MOVE * g.bbox().diagonal();
+    let hair = g.hair;
     for v in w.values.iter_mut() {
         if *v < 0.0 && *v > -hair {
             *v = hair;

@@ -27,10 +27,11 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use glam::DVec3;
 use rayon::prelude::*;
 
-pub(crate) use grid::Grid;
+pub(crate) use grid::{Grid, Lattice};
 pub use options::{
     BakeOptions, MAX_BAKE_TRIANGLES, MAX_GRID_CELLS, MAX_GRID_TOTAL, MAX_REFINE_STEPS,
 };
+pub(crate) use refine::Refine;
 
 use super::eval::{Program, Scratch};
 use crate::error::{Error, Result};
@@ -97,7 +98,7 @@ impl<S: Source + ?Sized> Field<'_, S> {
 
 /// Bakes `program` over `grid` into a mesh (sources all 0; the caller assigns materials).
 /// Refused once the surface needs more than [`MAX_BAKE_TRIANGLES`] triangles.
-pub(crate) fn march<S: Source + ?Sized>(source: &S, grid: Grid, refine_steps: u32) -> Result<Mesh> {
+pub(crate) fn march<S: Source + ?Sized>(source: &S, grid: Grid, refine: Refine) -> Result<Mesh> {
     let bbox = grid.bbox();
     let field = Field {
         source,
@@ -145,7 +146,7 @@ pub(crate) fn march<S: Source + ?Sized>(source: &S, grid: Grid, refine_steps: u3
                     split(&b, &mut stack);
                 } else {
                     let before = part.triangles.len();
-                    leaf(&field, &b, refine_steps, work, &mut part);
+                    leaf(&field, &b, refine, work, &mut part);
                     made.fetch_add(part.triangles.len() - before, Ordering::Relaxed);
                 }
             }
@@ -169,6 +170,18 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
     use std::collections::HashMap;
+
+    /// The grid of unit cells from the origin, `n` cells along each axis.
+    fn unit_grid(n: [usize; 3]) -> Grid {
+        let extent = DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64);
+        Grid {
+            anchor: DVec3::ZERO,
+            first: [0; 3],
+            cell: 1.0,
+            n,
+            hair: crate::geom::MAX_MOVE * extent.length(),
+        }
+    }
 
     /// Trilinear interpolation of values at the lattice points of a unit-cell grid.
     struct Lattice {
@@ -245,8 +258,8 @@ mod tests {
                 })
                 .collect();
             let lattice = Lattice { n, values };
-            let grid = Grid { origin: DVec3::ZERO, cell: 1.0, n };
-            let mesh = march(&lattice, grid, 2).unwrap();
+            let grid = unit_grid(n);
+            let mesh = march(&lattice, grid, Refine::Steps(2)).unwrap();
             prop_assert!(check_closed(&mesh).is_ok(), "{:?}", check_closed(&mesh));
             // Positive volume: outward orientation.
             if !mesh.is_empty() {
@@ -284,16 +297,7 @@ mod tests {
                 n: [3, 3, 3],
                 values: big,
             };
-            let mesh = march(
-                &lattice,
-                Grid {
-                    origin: DVec3::ZERO,
-                    cell: 1.0,
-                    n: [3, 3, 3],
-                },
-                1,
-            )
-            .unwrap();
+            let mesh = march(&lattice, unit_grid([3, 3, 3]), Refine::Steps(1)).unwrap();
             assert!(
                 check_closed(&mesh).is_ok(),
                 "{config}: {:?}",
