@@ -607,7 +607,10 @@ fn difference_of_spheres_turned_alike_about_close_axes_leaves_a_flat_shell() {
 /// inward) each 0.0098 of the 0.0156 there, on x = −0.4375 0.0098 and 0.0083. A vertex is
 /// judged by one crossing line (its own plane's or an edge's with the cut, the closest to
 /// parallel), and where three planes cross nearly in parallel the two operands pick different
-/// pairs.
+/// pairs. Instrumented: at the cube's corners, on the line where the turned cube's top face
+/// crosses the exact one, the distance across that line came out ±2e-20 … ±9e-20 against a band
+/// (eps times the sine, 1.7e-9) of 3.7e-22: the side is the line's own rounding, its point being
+/// known only to an ulp over the sine across it.
 #[test]
 #[ignore = "open: near-coplanar, since the crossing-line judgement — not a closed 2-manifold at step 1"]
 fn open_at_step_1_since_the_crossing_line_judgement() {
