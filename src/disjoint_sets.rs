@@ -30,6 +30,11 @@ impl DisjointSets {
         };
         let mut root = self.find(first);
         for &x in &items[1..] {
+            // Already a child of the root (most calls, on a mesh's triangles): nothing to do,
+            // and nothing `find` would have changed.
+            if self.parent[x] == root {
+                continue;
+            }
             let other = self.find(x);
             root = self.link(root, other);
         }

@@ -35,29 +35,48 @@ pub(super) fn drop_thin_shells(mesh: &mut Mesh, delta: f64, filled_from: usize) 
     // Per shell (by its root vertex): six times the volume about the root, twice the area.
     let mut volume = vec![0.0f64; n];
     let mut area = vec![0.0f64; n];
+    // Whether the flat fill added a triangle to the shell; the roots, each once, as first met.
+    // (Each triangle's root is found again only where some shell is flat: most meshes have
+    // none, and a list of the roots was a tenth of this check on a sphere union.)
+    let mut filled = vec![
+        false;
+        if filled_from < mesh.triangles.len() {
+            n
+        } else {
+            0
+        }
+    ];
+    let mut is_root = vec![false; n];
+    let mut roots: Vec<usize> = Vec::new();
+    for (i, t) in mesh.triangles.iter().enumerate() {
+        let r = sets.find(t[0] as usize);
+        let o = mesh.positions[r];
+        let [a, b, c] = t.map(|i| mesh.positions[i as usize] - o);
+        volume[r] += a.dot(b.cross(c));
+        area[r] += length((b - a).cross(c - a));
+        if i >= filled_from {
+            filled[r] = true;
+        }
+        if !is_root[r] {
+            is_root[r] = true;
+            roots.push(r);
+        }
+    }
+    // Mean thickness 2V / A = (6V / 3) / (2A / 2) = (2/3)·(6V) / (2A).
+    let flat = |r: usize| {
+        !filled.get(r).is_some_and(|&f| f) && 2.0 * volume[r].abs() / 3.0 <= delta * area[r]
+    };
+    // Whether every edge has its reverse is asked only of the flat shells (most meshes have
+    // none, asked once per shell): a hash of every edge was as much as the shell split itself.
+    // An edge's reverse shares its vertices, so it lies in the same shell.
+    if !roots.iter().any(|&r| flat(r)) {
+        return 0;
+    }
     let root: Vec<usize> = mesh
         .triangles
         .iter()
         .map(|t| sets.find(t[0] as usize))
         .collect();
-    let mut filled = vec![false; n];
-    let mut is_root = vec![false; n];
-    for (i, (t, &r)) in mesh.triangles.iter().zip(&root).enumerate() {
-        let o = mesh.positions[r];
-        let [a, b, c] = t.map(|i| mesh.positions[i as usize] - o);
-        volume[r] += a.dot(b.cross(c));
-        area[r] += length((b - a).cross(c - a));
-        filled[r] |= i >= filled_from;
-        is_root[r] = true;
-    }
-    // Mean thickness 2V / A = (6V / 3) / (2A / 2) = (2/3)·(6V) / (2A).
-    let flat = |r: usize| !filled[r] && 2.0 * volume[r].abs() / 3.0 <= delta * area[r];
-    // Whether every edge has its reverse is asked only of the flat shells (most meshes have
-    // none, asked once per shell): a hash of every edge was as much as the shell split itself.
-    // An edge's reverse shares its vertices, so it lies in the same shell.
-    if !(0..n).any(|r| is_root[r] && flat(r)) {
-        return 0;
-    }
     let candidate: Vec<bool> = root.iter().map(|&r| flat(r)).collect();
     let edges: HashSet<(u32, u32), FxBuild> = mesh
         .triangles
