@@ -42,6 +42,45 @@ fn coarse_route(name: &str) -> (bspcsg::Scene, bspcsg::TessellationOptions, bspc
     (scene, options, solid)
 }
 
+/// [`coarse_route`], the scene first checked as the `scenes` target checks it.
+fn checked_coarse_route(name: &str) -> (bspcsg::Scene, bspcsg::TessellationOptions, bspcsg::Solid) {
+    let route = coarse_route(name);
+    if let Err(e) = scene_check::check_bsp_route(&route.0) {
+        panic!("{name}: {e}");
+    }
+    route
+}
+
+/// The volume at `options` of `variant`, a document that must give the same solid as `scene`
+/// over the same box.
+fn variant_volume(
+    scene: &bspcsg::Scene,
+    variant: &str,
+    options: &bspcsg::TessellationOptions,
+) -> f64 {
+    let variant = bspcsg::Scene::from_json_str(variant).unwrap();
+    assert_eq!(variant.bbox(), scene.bbox());
+    variant.to_solid(options).unwrap().volume()
+}
+
+/// Asserts that a finding's solid and its mesh both have the volume `expected` (that of
+/// `what`) to 1e-12.
+fn assert_volume(
+    name: &str,
+    solid: &bspcsg::Solid,
+    mesh: &bspcsg::Mesh,
+    expected: f64,
+    what: &str,
+) {
+    assert!(
+        (mesh.volume() - expected).abs() < 1e-12 * expected
+            && (solid.volume() - expected).abs() < 1e-12 * expected,
+        "{name}: mesh volume {}, solid's {}, {what} {expected}",
+        mesh.volume(),
+        solid.volume()
+    );
+}
+
 /// Found by a 10-minute run of the `scenes` target: variations of the example bracket whose
 /// coarse BSP route gave a flat inverted shell. Closed since the BSP's cell planes leave a
 /// polygon whole on each side.
@@ -223,10 +262,7 @@ fn scene_bsp_route_crack_where_a_bake_meets_four_cuts() {
 /// scene's size.
 #[test]
 fn scene_bsp_route_of_a_bracket_with_a_slot_1e11_long() {
-    let (scene, options, solid) = coarse_route("bsp_8");
-    if let Err(e) = scene_check::check_bsp_route(&scene) {
-        panic!("bsp_8: {e}");
-    }
+    let (scene, options, solid) = checked_coarse_route("bsp_8");
     let mesh = solid.to_mesh();
     let report = mesh.report();
     assert!(
@@ -236,18 +272,9 @@ fn scene_bsp_route_of_a_bracket_with_a_slot_1e11_long() {
     // The same document with a slot 12 long, which still passes through the plate and the boss
     // and reaches less than the scene's diagonal beyond its box: nothing of it is cut off, and
     // its coordinates are of the scene's size.
-    let short =
-        bspcsg::Scene::from_json_str(&finding_json("bsp_8").replace("99999999990.3", "12.0"))
-            .unwrap();
-    assert_eq!(short.bbox(), scene.bbox());
-    let expected = short.to_solid(&options).unwrap().volume();
-    assert!(
-        (mesh.volume() - expected).abs() < 1e-12 * expected
-            && (solid.volume() - expected).abs() < 1e-12 * expected,
-        "bsp_8: mesh volume {}, solid's {}, the short slot's {expected}",
-        mesh.volume(),
-        solid.volume()
-    );
+    let short = finding_json("bsp_8").replace("99999999990.3", "12.0");
+    let expected = variant_volume(&scene, &short, &options);
+    assert_volume("bsp_8", &solid, &mesh, expected, "the short slot's");
 
     // The plate less the slot alone: the slot's trace through the plate's thickness t is its
     // cross-section (2.2 × 0.25) over the cosine of its 1° tilt from the plate's normal.
@@ -293,10 +320,7 @@ fn scene_bsp_route_of_a_bracket_with_a_slot_1e11_long() {
 /// one side only whole to that side (`bsp/build/face.rs`, `face_node`).
 #[test]
 fn scene_bsp_route_of_a_bracket_keeps_a_sliver_of_a_holes_ceiling() {
-    let (scene, options, solid) = coarse_route("bsp_9");
-    if let Err(e) = scene_check::check_bsp_route(&scene) {
-        panic!("bsp_9: {e}");
-    }
+    let (scene, options, solid) = checked_coarse_route("bsp_9");
     let mesh = solid.to_mesh();
     let report = mesh.report();
     assert!(
@@ -314,16 +338,8 @@ fn scene_bsp_route_of_a_bracket_keeps_a_sliver_of_a_holes_ceiling() {
     let mut steps = vec![serde_json::json!({"op": "subtract", "children": cuts[..3]})];
     steps.extend(holes);
     doc["tree"] = serde_json::json!({"op": "subtract", "children": steps});
-    let stepwise = bspcsg::Scene::from_json_str(&doc.to_string()).unwrap();
-    assert_eq!(stepwise.bbox(), scene.bbox());
-    let expected = stepwise.to_solid(&options).unwrap().volume();
-    assert!(
-        (mesh.volume() - expected).abs() < 1e-12 * expected
-            && (solid.volume() - expected).abs() < 1e-12 * expected,
-        "bsp_9: mesh volume {}, solid's {}, stepwise {expected}",
-        mesh.volume(),
-        solid.volume()
-    );
+    let expected = variant_volume(&scene, &doc.to_string(), &options);
+    assert_volume("bsp_9", &solid, &mesh, expected, "stepwise");
 }
 
 /// Found by a second 10-minute run of the `scenes` target in round 16 (after the fix above,
@@ -344,10 +360,7 @@ fn scene_bsp_route_of_a_bracket_keeps_a_sliver_of_a_holes_ceiling() {
 /// alike in both bakes and the booleans meet coincident faces.
 #[test]
 fn scene_bsp_route_less_a_second_bake_of_the_same_boss() {
-    let (scene, options, solid) = coarse_route("bsp_10");
-    if let Err(e) = scene_check::check_bsp_route(&scene) {
-        panic!("bsp_10: {e}");
-    }
+    let (scene, options, solid) = checked_coarse_route("bsp_10");
     let mesh = solid.to_mesh();
     let report = mesh.report();
     assert!(
@@ -361,16 +374,8 @@ fn scene_bsp_route_less_a_second_bake_of_the_same_boss() {
     let mut steps = vec![serde_json::json!({"op": "subtract", "children": children[..4]})];
     steps.extend_from_slice(&children[4..]);
     doc["tree"] = serde_json::json!({"op": "subtract", "children": steps});
-    let stepwise = bspcsg::Scene::from_json_str(&doc.to_string()).unwrap();
-    assert_eq!(stepwise.bbox(), scene.bbox());
-    let expected = stepwise.to_solid(&options).unwrap().volume();
-    assert!(
-        (mesh.volume() - expected).abs() < 1e-12 * expected
-            && (solid.volume() - expected).abs() < 1e-12 * expected,
-        "bsp_10: mesh volume {}, solid's {}, stepwise {expected}",
-        mesh.volume(),
-        solid.volume()
-    );
+    let expected = variant_volume(&scene, &doc.to_string(), &options);
+    assert_volume("bsp_10", &solid, &mesh, expected, "stepwise");
     // Reduced: a smooth union holds its operands, so the boss less plate and boss is empty.
     let reduced = bspcsg::Scene::from_json_str(
         r#"{"op": "subtract", "children": [
@@ -402,10 +407,7 @@ fn scene_bsp_route_less_a_second_bake_of_the_same_boss() {
 /// nothing: the same volume as the document without it.
 #[test]
 fn scene_bsp_route_of_a_bracket_with_a_hole_1e10_away() {
-    let (scene, options, solid) = coarse_route("bsp_11");
-    if let Err(e) = scene_check::check_bsp_route(&scene) {
-        panic!("bsp_11: {e}");
-    }
+    let (scene, options, solid) = checked_coarse_route("bsp_11");
     let mesh = solid.to_mesh();
     let report = mesh.report();
     assert!(
@@ -421,16 +423,8 @@ fn scene_bsp_route_of_a_bracket_with_a_hole_1e10_away() {
         .unwrap();
     assert_eq!(holes[3]["pos"][2], -14444444444.0);
     holes.pop();
-    let without = bspcsg::Scene::from_json_str(&doc.to_string()).unwrap();
-    assert_eq!(without.bbox(), scene.bbox());
-    let expected = without.to_solid(&options).unwrap().volume();
-    assert!(
-        (mesh.volume() - expected).abs() < 1e-12 * expected
-            && (solid.volume() - expected).abs() < 1e-12 * expected,
-        "bsp_11: mesh volume {}, solid's {}, without the far hole {expected}",
-        mesh.volume(),
-        solid.volume()
-    );
+    let expected = variant_volume(&scene, &doc.to_string(), &options);
+    assert_volume("bsp_11", &solid, &mesh, expected, "without the far hole");
     // Left out before it is made: made 10⁻⁴ tall, the far hole set the booleans a region
     // beyond precision while it was left out only after tessellating.
     let mut doc: serde_json::Value = serde_json::from_str(&finding_json("bsp_11")).unwrap();
