@@ -121,5 +121,11 @@ pub(super) fn repair(
             sources.push(p.source());
         }
     }
-    Some(shells::split_into_shells(positions, (triangles, sources)))
+    // No fill here: every triangle may be looked at for a reversed twin.
+    let mut filled_from = triangles.len();
+    Some(shells::split_into_shells(
+        positions,
+        (triangles, sources),
+        &mut filled_from,
+    ))
 }
