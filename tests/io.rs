@@ -507,11 +507,6 @@ fn empty_files_are_errors_and_files_of_no_faces_are_the_empty_mesh() {
             "# a note\nhello world\n",
             "prose.obj:2: the file holds no faces, and `hello`",
         ),
-        (
-            "degenerate.stl",
-            "solid d\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid d\n",
-            "all 1 triangles repeat a vertex",
-        ),
     ] {
         let p = dir.join(name);
         fs::write(&p, text).unwrap();
@@ -532,6 +527,46 @@ fn empty_files_are_errors_and_files_of_no_faces_are_the_empty_mesh() {
         assert_eq!((&a | &nothing).volume(), 1.0, "{format}");
         assert_eq!((&a - &nothing).volume(), 1.0, "{format}");
         assert!((&a & &nothing).is_empty(), "{format}");
+    }
+}
+
+/// Distinct corners whose coordinates coincide are geometry, not a damaged file: a mesh that
+/// bounds nothing (exit 2 on the command line), as when triangles keep their corners but lose
+/// their area. A box of 3·10⁻⁶ at 10¹¹, where floats are 1.5·10⁻⁵ apart, is written as eight
+/// equal vertices; it was refused as a file that "repeats a vertex" (exit 1).
+#[test]
+fn a_mesh_whose_distinct_corners_coincide_is_refused_as_geometry() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("coincident-corners");
+    fs::create_dir_all(&dir).unwrap();
+    let far = format!(
+        "{}f 1 2 4\nf 1 4 3\nf 5 7 8\nf 5 8 6\nf 1 5 6\nf 1 6 2\nf 3 4 8\nf 3 8 7\nf 1 3 7\nf 1 7 5\nf 2 6 8\nf 2 8 4\n",
+        "v 1e11 1e11 1e11\n".repeat(8)
+    );
+    for (name, text) in [
+        ("far.obj", far.as_str()),
+        (
+            "coincident.stl",
+            "solid d\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid d\n",
+        ),
+        (
+            "coincident.obj",
+            "v 0 0 0\nv 0 0 0\nv 1 0 0\nv 1 0 0\nf 1 2 3\nf 3 4 1\n",
+        ),
+    ] {
+        let p = dir.join(name);
+        fs::write(&p, text).unwrap();
+        let e = read_mesh(&p).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::InvalidMesh {
+                    defect: MeshDefect::AllZeroArea { .. },
+                    ..
+                }
+            ),
+            "{name}: {e:?}"
+        );
+        assert!(e.to_string().contains(name), "{name}: {e}");
     }
 }
 

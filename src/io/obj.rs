@@ -35,24 +35,32 @@ pub(crate) fn read(path: &Path, bytes: &[u8]) -> Result<Mesh> {
     let mut id = vec![u32::MAX; parsed.positions.len()];
     let mut triangles = Triangles::with_capacity(parsed.indices.len());
     let mut face: Vec<u32> = Vec::new();
+    let mut sorted: Vec<u32> = Vec::new();
     for range in &parsed.faces {
         face.clear();
-        for &i in &parsed.indices[range.clone()] {
+        let raw = &parsed.indices[range.clone()];
+        for &i in raw {
             let slot = &mut id[i as usize];
             if *slot == u32::MAX {
                 *slot = welder.index(parsed.positions[i as usize]);
             }
             face.push(*slot);
         }
-        triangulate_face(&welder.positions, &face, &mut triangles);
+        // Whether the face names distinct vertices: a repeat after welding is then theirs
+        // coinciding, not an index repeated (see `Triangles`).
+        sorted.clear();
+        sorted.extend_from_slice(raw);
+        sorted.sort_unstable();
+        let distinct = sorted.windows(2).all(|w| w[0] != w[1]);
+        triangulate_face(&welder.positions, &face, distinct, &mut triangles);
     }
     triangles.into_mesh(path, welder.positions)
 }
 
 /// Appends the triangles of one face (welded vertex ids); `out` drops those that repeat a
-/// vertex.
-fn triangulate_face(positions: &[DVec3], face: &[u32], out: &mut Triangles) {
-    let mut push = |t: [u32; 3]| out.push(t);
+/// vertex. `distinct`: the file named distinct vertices for the face's corners.
+fn triangulate_face(positions: &[DVec3], face: &[u32], distinct: bool, out: &mut Triangles) {
+    let mut push = |t: [u32; 3]| out.push(t, distinct);
     let fan = |push: &mut dyn FnMut([u32; 3])| {
         for k in 1..face.len() - 1 {
             push([face[0], face[k], face[k + 1]]);

@@ -109,7 +109,8 @@ fn read_binary(path: &Path, bytes: &[u8], n: usize) -> Result<Mesh> {
             }
             *slot = welder.index(p);
         }
-        triangles.push(tri);
+        // STL gives every corner by its coordinates: a repeat is corners coinciding.
+        triangles.push(tri, true);
     }
     triangles.into_mesh(path, welder.positions)
 }
@@ -181,7 +182,7 @@ fn read_ascii(path: &Path, bytes: &[u8]) -> Result<Mesh> {
                 }
                 // Three corners is the rule; a few writers emit polygons, taken as fans.
                 for k in 1..corners.len() - 1 {
-                    triangles.push([corners[0], corners[k], corners[k + 1]]);
+                    triangles.push([corners[0], corners[k], corners[k + 1]], true);
                 }
                 state = State::EndLoop;
             }

@@ -95,9 +95,20 @@ impl Scene {
     /// too fine for a primitive; [`Error::BeyondPrecision`] where parts meet (or a part lies)
     /// too far from the origin for their size (see [`Solid::check_precision`]).
     pub fn to_solid(&self, opts: &TessellationOptions) -> Result<Solid> {
+        let Some(ctx) = self.bsp_context(opts)? else {
+            return Ok(Solid::empty());
+        };
+        ctx.check_budget(self.root)?;
+        let solid = ctx.solid(self.root)?;
+        solid.check_precision()?;
+        Ok(solid)
+    }
+
+    /// The BSP route's settings for this scene (`None` for an empty scene), checked.
+    fn bsp_context(&self, opts: &TessellationOptions) -> Result<Option<Ctx<'_>>> {
         let world = self.bound.bbox;
         if world.is_empty() {
-            return Ok(Solid::empty());
+            return Ok(None);
         }
         if !(world.min.is_finite() && world.max.is_finite()) {
             return Err(Error::Unbounded {
@@ -116,20 +127,17 @@ impl Scene {
             Some(a) if a.is_finite() && a > 0.0 && a <= 120.0 => (360.0 / a).ceil() as u32,
             Some(a) => return Err(Error::param("max_angle", a, "must be in (0, 120] degrees")),
         };
-        let ctx = Ctx {
+        Ok(Some(Ctx {
             scene: self,
             tol,
             cell,
             world,
             min_segments,
-        };
-        ctx.check_budget(self.root)?;
-        let solid = ctx.solid(self.root)?;
-        solid.check_precision()?;
-        Ok(solid)
+        }))
     }
 }
 
+#[derive(Clone, Copy)]
 struct Ctx<'a> {
     scene: &'a Scene,
     tol: f64,
@@ -155,17 +163,108 @@ pub const MAX_SCENE_POLYGONS: u64 = crate::primitives::MAX_POLYGONS;
 /// refused at once, saying what to change.
 pub const MAX_SCENE_WORK: u64 = 1 << 24;
 
+/// What the BSP route would make of a scene at one tolerance, counted before tessellating.
+#[derive(Clone, Copy, Debug)]
+struct Estimate {
+    /// Polygons of all primitives.
+    polygons: u64,
+    /// Polygon corners of all primitives.
+    corners: u64,
+    /// Of them, corners of round primitives (which a coarser tolerance reduces).
+    round: u64,
+    /// Primitives.
+    leaves: u64,
+}
+
+impl Estimate {
+    /// Levels of the balanced reduction that combines the primitives: `⌈log₂ leaves⌉`, at
+    /// least 1.
+    fn levels(&self) -> u64 {
+        u64::from(self.leaves.max(2).next_power_of_two().trailing_zeros())
+    }
+
+    /// The boolean work: every corner clipped once per level.
+    fn work(&self) -> u64 {
+        self.corners.saturating_mul(self.levels())
+    }
+
+    /// Within both budgets.
+    fn fits(&self) -> bool {
+        self.polygons <= MAX_SCENE_POLYGONS && self.work() <= MAX_SCENE_WORK
+    }
+
+    /// How many times over the larger budget it is (1 or less when it fits).
+    fn over(&self) -> f64 {
+        (self.polygons as f64 / MAX_SCENE_POLYGONS as f64)
+            .max(self.work() as f64 / MAX_SCENE_WORK as f64)
+    }
+}
+
 impl Ctx<'_> {
-    /// Refuses a scene whose round primitives would need more than [`MAX_SCENE_POLYGONS`]
-    /// polygons in all at this tolerance, before any is made; the message says what tolerance
-    /// would do. Each primitive's count is estimated from its segment counts (the same the
-    /// tessellation uses); smooth subtrees baked by marching cubes are bounded by their own
-    /// grid budget.
+    /// Refuses a scene whose primitives would need more than [`MAX_SCENE_POLYGONS`] polygons
+    /// in all, or more than [`MAX_SCENE_WORK`] of boolean work, at this tolerance, before any
+    /// is made. Where a coarser tolerance brings the scene within both, the message names one,
+    /// checked by the same estimate (a tolerance that only meets the polygon budget was
+    /// suggested once, then refused by the work budget); else it says to use fewer primitives
+    /// or points, or the marching-cubes route. Each primitive's count is estimated from its
+    /// segment counts (the same the tessellation uses); smooth subtrees baked by marching cubes
+    /// are bounded by their own grid budget.
     fn check_budget(&self, root: NodeId) -> Result<()> {
+        let e = self.estimate_scene(root)?;
+        if e.fits() {
+            return Ok(());
+        }
+        let over = if e.polygons > MAX_SCENE_POLYGONS {
+            format!(
+                "the scene's primitives would need about {} polygons in all, more than the \
+                 {MAX_SCENE_POLYGONS}-polygon budget of a scene",
+                e.polygons
+            )
+        } else {
+            format!(
+                "the scene's {} primitives would have about {} polygon corners, combined over \
+                 {} levels of booleans: about {} units of work, more than the budget of \
+                 {MAX_SCENE_WORK} (about a minute)",
+                e.leaves,
+                e.corners,
+                e.levels(),
+                e.work()
+            )
+        };
+        // Round primitives' polygons go as 1/tolerance: a coarser one is the remedy where it
+        // fits. Where most corners are boxes and outlines it would not, and naming it would
+        // point at an option the user may never have given: the scene itself is refused.
+        let fitting = if e.polygons > MAX_SCENE_POLYGONS || 2 * e.round > e.corners {
+            self.tolerance_that_fits(root, e)?
+        } else {
+            None
+        };
+        Err(match fitting {
+            Some(t) => Error::param(
+                "tolerance",
+                self.tol,
+                format!("{over}; use a tolerance of at least {t:.2e}, or fewer round primitives"),
+            ),
+            None => Error::Scene {
+                file: None,
+                json_path: "$".into(),
+                message: format!(
+                    "{over}; use fewer primitives or 2D shapes of fewer points (a tolerance \
+                     changes only round parts), or the marching-cubes route (--via sdf)"
+                ),
+            },
+        })
+    }
+
+    /// The counts of every primitive of the scene that lies in it.
+    fn estimate_scene(&self, root: NodeId) -> Result<Estimate> {
         let tree = &self.scene.tree;
-        let (mut total, mut corners, mut leaves): (u64, u64, u64) = (0, 0, 0);
-        // Corners of round primitives, which a coarser tolerance reduces.
-        let mut round: u64 = 0;
+        let mut e = Estimate {
+            polygons: 0,
+            corners: 0,
+            round: 0,
+            leaves: 0,
+        };
         let mut work = vec![(root, Frame::WORLD)];
         while let Some((id, parent)) = work.pop() {
             let node = tree.node(id);
@@ -186,60 +285,38 @@ impl Ctx<'_> {
                     }
                     let (p, c) = self.estimate(shape, &frame)?;
                     if p > 6 {
-                        round = round.saturating_add(c);
+                        e.round = e.round.saturating_add(c);
                     }
-                    total = total.saturating_add(p);
-                    corners = corners.saturating_add(c);
-                    leaves += 1;
+                    e.polygons = e.polygons.saturating_add(p);
+                    e.corners = e.corners.saturating_add(c);
+                    e.leaves += 1;
                 }
             }
         }
-        if total > MAX_SCENE_POLYGONS {
-            // Round surfaces need segments ∝ 1/√tolerance on each of two axes.
-            let enough = self.tol * total as f64 / MAX_SCENE_POLYGONS as f64;
-            return Err(Error::param(
-                "tolerance",
-                self.tol,
-                format!(
-                    "the scene's primitives would need about {total} polygons in all, more than \
-                     the {MAX_SCENE_POLYGONS}-polygon budget of a scene; use a tolerance of at \
-                     least {enough:.2e}, or fewer round primitives"
-                ),
-            ));
+        Ok(e)
+    }
+
+    /// A tolerance, to three significant digits as the message prints it, at which the
+    /// scene's estimate `e` (at `self.tol`) comes within both budgets: about the finest, as
+    /// each step scales the last by how far over it still is. `None` where none does within a
+    /// factor of 10⁶ (boxes and outlines dominate, or the angle bound sets the segment counts).
+    fn tolerance_that_fits(&self, root: NodeId, mut e: Estimate) -> Result<Option<f64>> {
+        let mut tol = self.tol;
+        for _ in 0..64 {
+            // Polygons go as 1/tolerance; a step of at least 1 % where rounding of segment
+            // counts keeps the estimate just over.
+            let next = tol * e.over().max(1.01);
+            if next > 1e6 * self.tol {
+                break;
+            }
+            // The value as printed, read back: what the user will pass.
+            tol = format!("{:.2e}", round_up(next)).parse().unwrap_or(next);
+            e = Ctx { tol, ..*self }.estimate_scene(root)?;
+            if e.fits() {
+                return Ok(Some(tol));
+            }
         }
-        let levels = u64::from(leaves.max(2).next_power_of_two().trailing_zeros());
-        let work = corners.saturating_mul(levels);
-        if work > MAX_SCENE_WORK {
-            let over = format!(
-                "the scene's {leaves} primitives would have about {corners} polygon corners, \
-                 combined over {levels} levels of booleans: about {work} units of work, more \
-                 than the budget of {MAX_SCENE_WORK} (about a minute)"
-            );
-            // Round primitives' corners go as 1/tolerance: a coarser one is the remedy. Where
-            // most corners are boxes and outlines, no tolerance helps, and naming it would
-            // point at an option the user may never have given: the scene itself is refused.
-            return Err(if 2 * round > corners {
-                Error::param(
-                    "tolerance",
-                    self.tol,
-                    format!(
-                        "{over}; use a tolerance of at least {:.2e}, or fewer round primitives",
-                        self.tol * work as f64 / MAX_SCENE_WORK as f64
-                    ),
-                )
-            } else {
-                Error::Scene {
-                    file: None,
-                    json_path: "$".into(),
-                    message: format!(
-                        "{over}; use fewer primitives or 2D shapes of fewer points (a \
-                         tolerance changes only round parts), or the marching-cubes route \
-                         (--via sdf)"
-                    ),
-                }
-            });
-        }
-        Ok(())
+        Ok(None)
     }
 
     /// About how many polygons and polygon corners the tessellation of `shape` has (exact
@@ -526,6 +603,74 @@ fn check_thickness(lb: &Aabb, world: &Solid, frame: &Frame) -> Result<()> {
     })
 }
 
+/// `x` rounded up to three significant digits (so that printing it with `{:.2e}` does not
+/// round it down).
+fn round_up(x: f64) -> f64 {
+    let unit = 10f64.powi(x.log10().floor() as i32 - 2);
+    (x / unit).ceil() * unit * (1.0 + 4.0 * f64::EPSILON)
+}
+
 fn combine(op: BoolOp, children: Vec<Solid>) -> Solid {
     crate::solid::boolean_all(children, op)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The tolerance named in a budget refusal's message.
+    fn named_tolerance(e: &Error) -> f64 {
+        let text = e.to_string();
+        text.split("at least ")
+            .nth(1)
+            .and_then(|r| r.split(',').next())
+            .and_then(|t| t.parse().ok())
+            .unwrap_or_else(|| panic!("no tolerance named: {text}"))
+    }
+
+    /// Issue 12 item 6: four unit spheres at a tolerance of 10⁻⁶ were refused by the polygon
+    /// budget with "use a tolerance of at least 2.35e-6", which the work budget then refused
+    /// ("at least 4.71e-6"). Whichever budget refuses, the tolerance it names passes both.
+    #[test]
+    fn a_budget_refusal_names_a_tolerance_that_passes_both_budgets() {
+        let sphere = |x: f64, y: f64, z: f64| {
+            format!(
+                r#"{{"kind":"sdf_primitive","pos":[{x},{y},{z}],"data":{{"primitive_type":"sphere","radius":1}}}}"#
+            )
+        };
+        let four = format!(
+            r#"{{"op":"union","children":[{},{},{},{}]}}"#,
+            sphere(0.0, 0.0, 0.0),
+            sphere(0.5, 0.0, 0.0),
+            sphere(0.0, 0.5, 0.0),
+            sphere(0.0, 0.0, 0.5)
+        );
+        let many: Vec<String> = (0..40)
+            .map(|i| sphere(0.1 * f64::from(i), 0.0, 0.0))
+            .collect();
+        let many = format!(r#"{{"op":"union","children":[{}]}}"#, many.join(","));
+        for (doc, tolerances) in [(&four, [1e-7, 1e-6, 2.36e-6]), (&many, [1e-6, 1e-5, 1e-4])] {
+            let scene = Scene::from_json_str(doc).unwrap();
+            for tol in tolerances {
+                let opts = TessellationOptions::with_tolerance(tol);
+                let ctx = scene.bsp_context(&opts).unwrap().unwrap();
+                let refusal = ctx.check_budget(scene.root).unwrap_err();
+                let named = named_tolerance(&refusal);
+                let at_named = TessellationOptions::with_tolerance(named);
+                let ctx = scene.bsp_context(&at_named).unwrap().unwrap();
+                assert!(
+                    ctx.check_budget(scene.root).is_ok(),
+                    "at {tol:e}: {refusal}; at {named:e}: {}",
+                    ctx.check_budget(scene.root).unwrap_err()
+                );
+                // And it is about the finest that does: 5 % finer is refused.
+                let finer = TessellationOptions::with_tolerance(named / 1.05);
+                let ctx = scene.bsp_context(&finer).unwrap().unwrap();
+                assert!(
+                    ctx.check_budget(scene.root).is_err(),
+                    "{named:e} / 1.05 fits"
+                );
+            }
+        }
+    }
 }

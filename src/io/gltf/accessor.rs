@@ -64,7 +64,7 @@ impl Reader<'_> {
             if flip {
                 tri.swap(1, 2);
             }
-            triangles.push(tri);
+            triangles.push(tri, t[0] != t[1] && t[1] != t[2] && t[0] != t[2]);
         };
         match mode {
             Mode::Triangles => {
