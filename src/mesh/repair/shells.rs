@@ -113,7 +113,7 @@ fn cancel_reversed_pairs(
 /// [`split_into_shells`] with `disc` from [`one_disc`]: around a disc vertex every edge is used
 /// once each way and its corners are one fan, so a half-edge between two of them needs no twin
 /// found (most of a boolean's output).
-fn split_around_discs(
+pub(super) fn split_around_discs(
     positions: Vec<DVec3>,
     (triangles, sources): (Vec<[u32; 3]>, Vec<u32>),
     disc: &[bool],
