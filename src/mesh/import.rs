@@ -5,6 +5,7 @@ use super::Mesh;
 use crate::error::{Error, MeshDefect, Result};
 use crate::geom::is_zero_area;
 use crate::hash::{FxBuild, FxHashMap};
+use crate::mesh::repair::Links;
 use crate::polygon::{Polygon, Vertices};
 use crate::topology::{check_closed, check_face_indices, check_finite};
 
@@ -96,9 +97,41 @@ impl FromMeshOptions {
     }
 }
 
+/// The polygons of a checked mesh, and when they are discs by position.
+pub(crate) struct MeshPolygons {
+    pub polygons: Vec<Polygon>,
+    /// The number of vertices the mesh's triangles use, where the polygons are **discs by
+    /// position** provided their corners take that many distinct positions (no two used
+    /// vertices at one position, bit for bit, as the solid's vertex ids tell positions apart);
+    /// `None` where they may not be.
+    ///
+    /// Discs by position: around every position a polygon has as a corner, the polygons there,
+    /// each fanned into triangles from any of its corners (all of them turned the other way or
+    /// none), form one closed disc in the sense of `repair::Links::disc`. `to_mesh` then need not
+    /// walk the links of the vertices a boolean passes through with only such polygons around
+    /// them (see `repair::indexed`). Said only of a mesh checked closed and free of crossings,
+    /// where:
+    /// - the triangles around every vertex form one closed disc (the crossing check's links);
+    /// - no triangle was skipped for its zero area (its corners would lack it);
+    /// - no merged polygon has more than [`DISC_CORNERS`] corners, or two corners not next to
+    ///   each other that an edge of a triangle outside it joins ([`Merger::chords_are_inside`]).
+    ///
+    /// A merged polygon's triangles have no vertex inside it, so those at one of its corners
+    /// `v` are a fan through its other corners, a stretch of `v`'s disc from the corner after
+    /// `v` to the one before. Fanned again from another corner, the stretch between the same
+    /// two ends runs through other corners of the polygon; these are in no other polygon's
+    /// stretch, since no triangle outside it joins them to `v`. So the link stays one cycle
+    /// through distinct vertices.
+    pub discs_if_apart: Option<usize>,
+}
+
+/// The most corners a merged polygon may have for the mesh to be discs by position
+/// ([`MeshPolygons::discs_if_apart`]): each pair of its corners is looked up.
+const DISC_CORNERS: usize = 8;
+
 /// The polygons of a solid bounded by `mesh`, after the checks [`FromMeshOptions`] asks for
 /// (the rules are documented on `Solid::from_mesh_with`).
-pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Result<Vec<Polygon>> {
+pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Result<MeshPolygons> {
     if mesh.sources.len() != mesh.triangles.len() {
         return Err(Error::mesh(MeshDefect::SourceCount {
             sources: mesh.sources.len(),
@@ -115,6 +148,7 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
         used[i as usize] = true;
     }
     check_finite(&mesh.positions, |i| used[i])?;
+    let mut links = None;
     if options.require_closed {
         check_closed(&mesh.triangles)?;
         let report = mesh.report();
@@ -143,6 +177,7 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
                 candidates: crossing.offered,
             }));
         }
+        links = crossing.discs;
     }
     // One polygon per triangle of non-zero area. Repeated indices were refused or have
     // zero area, so Polygon::new only fails where Newell's method finds no plane at all.
@@ -166,12 +201,22 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
             reach: mesh.bbox().max_abs(),
         }));
     }
+    if !triangles.iter().all(Option::is_some) {
+        links = None;
+    }
+    let mut discs = links.is_some();
     let polygons = if options.merge_coplanar {
-        merge_coplanar(mesh, &triangles)
+        let (polygons, chords_inside) = merge_coplanar(mesh, &triangles, links.as_ref());
+        discs &= chords_inside;
+        polygons
     } else {
         triangles.into_iter().flatten().collect()
     };
-    Ok(polygons)
+    let discs_if_apart = discs.then(|| used.iter().filter(|&&u| u).count());
+    Ok(MeshPolygons {
+        polygons,
+        discs_if_apart,
+    })
 }
 
 /// A corner of a merged polygon turns left by more than this sine of its angle: strictly convex
@@ -184,8 +229,18 @@ const STRICTLY_CONVEX: f64 = 1e-12;
 ///
 /// The ring is a linked list over vertex indices (`next`, `prev`), and `stamp` marks the
 /// vertices of the current ring, so each polygon costs time linear in its size.
-fn merge_coplanar(mesh: &Mesh, triangles: &[Option<Polygon>]) -> Vec<Polygon> {
+///
+/// With the mesh's `links` (a mesh checked closed, each edge used once each way, and a disc at
+/// every vertex), also says whether every merged polygon has its chords inside
+/// ([`Merger::chords_are_inside`]); else false.
+fn merge_coplanar(
+    mesh: &Mesh,
+    triangles: &[Option<Polygon>],
+    links: Option<&Links>,
+) -> (Vec<Polygon>, bool) {
     let mut merger = Merger::new(mesh, triangles);
+    merger.links = links;
+    merger.chords_inside = links.is_some();
     let mut out = Vec::new();
     for (seed, polygon) in triangles.iter().enumerate() {
         let Some(polygon) = polygon else { continue };
@@ -195,7 +250,7 @@ fn merge_coplanar(mesh: &Mesh, triangles: &[Option<Polygon>]) -> Vec<Polygon> {
         merger.done[seed] = true;
         out.push(merger.grow(seed, polygon));
     }
-    out
+    (out, merger.chords_inside)
 }
 
 /// An edge used by more than one triangle in the same direction.
@@ -218,6 +273,14 @@ struct Merger<'a> {
     /// The seed whose ring a vertex is on.
     stamp: Vec<usize>,
     stack: Vec<u32>,
+    /// The mesh's links, where the chords of merged polygons are checked.
+    links: Option<&'a Links>,
+    /// Whether every merged polygon so far has its chords inside (see
+    /// [`Merger::chords_are_inside`]).
+    chords_inside: bool,
+    /// The current ring's edges that merges replaced (the diagonals of its triangles), while
+    /// it has at most [`DISC_CORNERS`] corners.
+    diagonals: [(u32, u32); DISC_CORNERS - 3],
 }
 
 impl<'a> Merger<'a> {
@@ -250,6 +313,9 @@ impl<'a> Merger<'a> {
             prev: vec![UNSET; pos.len()],
             stamp: vec![usize::MAX; pos.len()],
             stack: Vec::new(),
+            links: None,
+            chords_inside: false,
+            diagonals: [(UNSET, UNSET); DISC_CORNERS - 3],
         }
     }
 
@@ -263,6 +329,26 @@ impl<'a> Merger<'a> {
 
     fn p(&self, i: u32) -> glam::DVec3 {
         self.pos[i as usize]
+    }
+
+    /// Whether no two corners of the merged polygon `ring` (at most [`DISC_CORNERS`] of them)
+    /// not next to each other are joined by an edge of a triangle outside it.
+    ///
+    /// The polygon's own triangles join such corners only along the ring edges its merges
+    /// replaced (`diagonals`); the mesh being closed, each of those is used by the two
+    /// triangles beside it and no third. Any other pair must be no edge at all: the second is
+    /// not in the first's link.
+    fn chords_are_inside(&self, links: &Links, ring: &[u32]) -> bool {
+        let n = ring.len();
+        let diagonals = &self.diagonals[..n - 3];
+        (0..n).all(|i| {
+            (i + 2..n - usize::from(i == 0)).all(|j| {
+                let (u, w) = (ring[i], ring[j]);
+                diagonals.contains(&(u, w))
+                    || diagonals.contains(&(w, u))
+                    || links.of(u as usize).iter().all(|e| e.0 != w)
+            })
+        })
     }
 
     /// Strictly convex at b: a left turn about `normal`, beyond rounding.
@@ -293,6 +379,9 @@ impl<'a> Merger<'a> {
                 self.prev[v as usize] = w;
                 self.stamp[w as usize] = seed;
                 self.done[t] = true;
+                if let Some(d) = self.diagonals.get_mut(corners - 3) {
+                    *d = (u, v);
+                }
                 corners += 1;
                 self.stack.extend([u, w]);
             }
@@ -301,10 +390,18 @@ impl<'a> Merger<'a> {
             return polygon.clone();
         }
         let mut ring = Vertices::with_capacity(corners);
+        let mut at = [0u32; DISC_CORNERS];
         let mut i = a;
-        for _ in 0..corners {
+        for k in 0..corners {
             ring.push(self.p(i));
+            if let Some(slot) = at.get_mut(k) {
+                *slot = i;
+            }
             i = self.next[i as usize];
+        }
+        if let Some(links) = self.links.filter(|_| self.chords_inside) {
+            self.chords_inside =
+                corners <= DISC_CORNERS && self.chords_are_inside(links, &at[..corners]);
         }
         // A strictly convex ring of positive area always has a plane; keep the seed's as a
         // fallback that cannot fail.

@@ -18,6 +18,8 @@ pub(super) struct Far {
     core: usize,
     rim: usize,
     vertex_count: u32,
+    /// Whether the operand's polygons are discs by position (see [`VertexIds::discs`]).
+    discs: bool,
 }
 
 /// The polygons away from the other surface whose region is labelled `keep`. Polygons sharing a
@@ -116,6 +118,7 @@ pub(super) fn keep_far(
         core: n_core,
         rim: n_rim,
         vertex_count: far_count,
+        discs: ids.discs(),
     }
 }
 
@@ -196,6 +199,8 @@ pub(super) fn assemble(
         rim,
         ids,
         vertex_count,
+        a_vertices: offset,
+        discs: [a.discs, b.discs],
     });
     (polygons, index)
 }

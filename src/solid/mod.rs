@@ -27,6 +27,7 @@ use std::sync::Arc;
 
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, Tolerance};
+use crate::mesh::import::MeshPolygons;
 use crate::mesh::repair::Indexed;
 use crate::polygon::Polygon;
 
@@ -98,9 +99,15 @@ impl Solid {
         }
     }
 
-    /// [`Solid::from_polygons`] for the polygons of a mesh, with their vertex ids.
-    pub(crate) fn from_mesh_polygons(polygons: Vec<Polygon>) -> Self {
-        let ids = VertexIds::new(&polygons);
+    /// [`Solid::from_polygons`] for the polygons of a mesh, with their vertex ids (and whether
+    /// they are discs by position: see [`MeshPolygons::discs_if_apart`]).
+    pub(crate) fn from_mesh_polygons(mesh: MeshPolygons) -> Self {
+        let MeshPolygons {
+            polygons,
+            discs_if_apart,
+        } = mesh;
+        let mut ids = VertexIds::new(&polygons);
+        ids.set_discs(discs_if_apart == Some(ids.vertex_count()));
         Solid {
             vertex_ids: Some(Arc::new(ids)),
             ..Solid::from_polygons(polygons)

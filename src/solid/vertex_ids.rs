@@ -18,6 +18,9 @@ pub(crate) struct VertexIds {
     ids: Vec<u32>,
     start: Vec<u32>,
     vertices: usize,
+    /// Whether the polygons are discs by position (a checked mesh's: see
+    /// `mesh::import::MeshPolygons::discs_if_apart`).
+    discs: bool,
     /// Made when first asked: only an operand passed on indexed needs it.
     around: OnceLock<Around>,
 }
@@ -49,6 +52,7 @@ impl VertexIds {
             ids,
             start,
             vertices: id_of.len(),
+            discs: false,
             around: OnceLock::new(),
         }
     }
@@ -97,6 +101,16 @@ impl VertexIds {
 
     pub(crate) fn vertex_count(&self) -> usize {
         self.vertices
+    }
+
+    /// Marks the polygons as discs by position, or not.
+    pub(crate) fn set_discs(&mut self, discs: bool) {
+        self.discs = discs;
+    }
+
+    /// Whether the polygons are discs by position.
+    pub(crate) fn discs(&self) -> bool {
+        self.discs
     }
 }
 

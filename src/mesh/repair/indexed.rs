@@ -4,6 +4,7 @@
 
 use glam::DVec3;
 
+use super::discs::one_disc;
 use super::{regions, rings_of, shells, tjunction};
 use crate::geom::is_zero_area;
 use crate::mesh::Mesh;
@@ -29,6 +30,12 @@ pub(crate) struct Indexed {
     pub ids: Vec<u32>,
     /// One more than the largest id.
     pub vertex_count: u32,
+    /// Ids below this are the first operand's, the rest the second's.
+    pub a_vertices: u32,
+    /// Per operand, whether its polygons are discs by position (a checked mesh's: see
+    /// `mesh::import::MeshPolygons::discs_if_apart`), so that the core's own vertices need no
+    /// link walk (see [`discs_around_core`]).
+    pub discs: [bool; 2],
 }
 
 /// One repair pass over the rim and the cut polygons at weld tolerance `delta`, with the core's
@@ -55,21 +62,37 @@ pub(super) fn repair(
         .sum();
     // The welded vertex of each id the rim uses; the core's own vertices come after them.
     let mut vertex_of = vec![u32::MAX; index.vertex_count as usize];
+    // Whether discs by position may stand for the core's own vertices: not where the weld made
+    // two ids one vertex (see [`discs_around_core`]). Per welded vertex, the id a rim corner
+    // gave it.
+    let mut by_position = index.discs[0] || index.discs[1];
+    let mut id_at = vec![u32::MAX; if by_position { positions.len() } else { 0 }];
     let mut rim_ids = index.ids[core_corners..].iter();
     for &r in &index.rim {
         let at = first_corner[r as usize - index.core] as usize;
         let n = polygons[r as usize].vertices().len();
         for (&id, &v) in rim_ids.by_ref().take(n).zip(&map[at..at + n]) {
             vertex_of[id as usize] = v;
+            if let Some(taken) = id_at.get_mut(v as usize) {
+                by_position &= *taken == u32::MAX || *taken == id;
+                *taken = id;
+            }
         }
     }
+    drop(id_at);
+    let disc_of = |id: u32| by_position && index.discs[usize::from(id >= index.a_vertices)];
     let mut pinned = vec![false; positions.len()];
     let mut own = 0usize;
+    // Whether each of the core's own vertices is a disc by position, in the order numbered.
+    let mut own_discs: Vec<bool> = Vec::new();
     for &id in &index.ids[..core_corners] {
         let v = &mut vertex_of[id as usize];
         if *v == u32::MAX {
             *v = (positions.len() + own) as u32;
             own += 1;
+            if by_position {
+                own_discs.push(disc_of(id));
+            }
         } else if (*v as usize) < pinned.len() {
             // A seam vertex: no region of the rim may drop it.
             pinned[*v as usize] = true;
@@ -96,6 +119,12 @@ pub(super) fn repair(
     // The core's own vertices, in the order they were numbered above.
     let welded = positions.len();
     positions.resize(welded + own, DVec3::ZERO);
+    // The triangles whose links are walked (where some own vertex may be a disc by position):
+    // all but the fans of core polygons whose corners are all such vertices.
+    let mut walked: Vec<[u32; 3]> = Vec::new();
+    if by_position {
+        walked.extend_from_slice(&triangles);
+    }
     let mut at = 0usize;
     triangles.reserve(core_corners);
     sources.reserve(core_corners);
@@ -104,9 +133,14 @@ pub(super) fn repair(
         let ids = &index.ids[at..at + vs.len()];
         at += vs.len();
         let v = |k: usize| vertex_of[ids[k] as usize];
+        let mut walk = false;
         for (k, &x) in vs.iter().enumerate() {
-            if v(k) as usize >= welded {
-                positions[v(k) as usize] = x;
+            let i = v(k) as usize;
+            if i >= welded {
+                positions[i] = x;
+                walk |= by_position && !own_discs[i - welded];
+            } else {
+                walk = true;
             }
         }
         for k in 1..vs.len() - 1 {
@@ -119,7 +153,52 @@ pub(super) fn repair(
             }
             triangles.push(t);
             sources.push(p.source());
+            if walk && by_position {
+                walked.push(t);
+            }
         }
     }
-    Some(shells::split_into_shells(positions, (triangles, sources)))
+    let disc = if by_position {
+        discs_around_core(&walked, positions.len(), welded, &own_discs)
+    } else {
+        one_disc(&triangles, positions.len())
+    };
+    // Every indexed boolean of the unit tests checks the skip against the walk of every link.
+    #[cfg(test)]
+    assert_eq!(disc, one_disc(&triangles, positions.len()));
+    Some(shells::split_around_discs(
+        positions,
+        (triangles, sources),
+        &disc,
+    ))
+}
+
+/// Which vertices are discs ([`one_disc`]) in the mesh of the rim's and the cut polygons'
+/// triangles and the core's fans, from the links of `walked` alone: all of those triangles
+/// but the fans of core polygons whose every corner is an own vertex (numbered from `welded`)
+/// that `own_discs` says is a disc by position.
+///
+/// An own vertex is used by the fans of core polygons alone: every polygon around its position
+/// was passed through whole, all of them core (a rim polygon's corners are welded, see
+/// [`Indexed`]). So its triangles are the fans of all of its operand's polygons at that
+/// position, and its link's vertices are the output vertices of the ids around it: own
+/// vertices, one per id, and welded ones, one per id unless the weld made two ids one vertex
+/// (the caller then walks every link). Where its operand is discs by position, it is a disc,
+/// and needs no walk: the core far from the cut costs nothing here. Every other vertex has all
+/// its triangles in `walked`: a welded one those of the rim and the cut polygons and the fans
+/// of every core polygon holding it (each has a welded corner), an own one not a disc by
+/// position the fans of every polygon around it (each has it as a corner). A wrong skip would
+/// keep one vertex where two fans meet and leave its half-edges without their twins found: an
+/// open or pinched mesh passed as closed.
+fn discs_around_core(
+    walked: &[[u32; 3]],
+    vertex_count: usize,
+    welded: usize,
+    own_discs: &[bool],
+) -> Vec<bool> {
+    let mut disc = one_disc(walked, vertex_count);
+    for (d, &known) in disc[welded..].iter_mut().zip(own_discs) {
+        *d |= known;
+    }
+    disc
 }

@@ -8,10 +8,15 @@ use rayon::prelude::*;
 use super::orient;
 use crate::mesh::repair::Links;
 
-/// Per vertex: its valence when no two triangles around it cross (by [`embedded`]), else 0.
-pub(super) fn embedded_valences(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<u32> {
+/// Per vertex: its valence when no two triangles around it cross (by [`embedded`]), else 0;
+/// and the links of the vertices, where every vertex a triangle uses is one closed disc
+/// ([`Links::disc`]).
+pub(super) fn embedded_valences(
+    positions: &[DVec3],
+    triangles: &[[u32; 3]],
+) -> (Vec<u32>, Option<Links>) {
     let links = Links::new(triangles, positions.len());
-    (0..positions.len())
+    let valences = (0..positions.len())
         .into_par_iter()
         .with_min_len(4096)
         .map(|v| {
@@ -22,7 +27,19 @@ pub(super) fn embedded_valences(positions: &[DVec3], triangles: &[[u32; 3]]) -> 
                 0
             }
         })
-        .collect()
+        .collect();
+    (valences, all_discs(&links).then_some(links))
+}
+
+/// Whether every vertex of `links` that a triangle uses is a disc. Kept out of line, so as not
+/// to change how the crossing search is compiled.
+#[inline(never)]
+fn all_discs(links: &Links) -> bool {
+    links
+        .disc
+        .iter()
+        .enumerate()
+        .all(|(v, &disc)| disc || links.of(v).is_empty())
 }
 
 /// Whether the fan of triangles `(v, a, b)`, one per edge `(a, b)` of `link` (a closed disc in
@@ -87,14 +104,14 @@ mod tests {
     fn a_cone_is_embedded_at_every_vertex() {
         for h in [1.0, 1e-3, -0.5] {
             let (p, t) = cone(64, h);
-            let v = embedded_valences(&p, &t);
+            let v = embedded_valences(&p, &t).0;
             assert_eq!(&v[..2], [64, 64], "{h}");
             assert!(v[2..].iter().all(|&k| k == 4), "{h}");
         }
         // A flat cone: the apex fan lies on the base fan, all of it in one plane; each fan on
         // its own is still embedded (the two cross each other, which is not this test's).
         let (p, t) = cone(16, 0.0);
-        assert_eq!(&embedded_valences(&p, &t)[..2], [16, 16]);
+        assert_eq!(&embedded_valences(&p, &t).0[..2], [16, 16]);
     }
 
     #[test]
@@ -102,7 +119,7 @@ mod tests {
         // One ring vertex pulled across the apex fan: its two wedges turn the other way.
         let (mut p, t) = cone(64, 1.0);
         p[2 + 10] = DVec3::new(-2.0 * p[12].x, -2.0 * p[12].y, 0.0);
-        let v = embedded_valences(&p, &t);
+        let v = embedded_valences(&p, &t).0;
         assert_eq!(v[0], 0);
         assert_eq!(v[1], 0);
         // A link going round the apex twice: ring vertex i at angle 2·(2π i / n), every wedge
@@ -112,7 +129,7 @@ mod tests {
             let a = 2.0 * std::f64::consts::TAU * i as f64 / 64.0;
             *q = DVec3::new(a.cos(), a.sin(), 0.0);
         }
-        let v = embedded_valences(&p, &t);
+        let v = embedded_valences(&p, &t).0;
         assert_eq!(v[0], 0);
         assert_eq!(v[1], 0);
     }

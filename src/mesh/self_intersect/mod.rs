@@ -49,6 +49,7 @@ use rayon::prelude::*;
 
 use crate::geom::bvh::{Bvh, NO_GROUP};
 use crate::geom::{Aabb, is_zero_area};
+use crate::mesh::repair::Links;
 
 #[cfg(test)]
 use exact::coplanar_overlap;
@@ -107,6 +108,9 @@ pub(crate) struct Search {
     pub pairs: Vec<(u32, u32)>,
     /// False when the search stopped at its [`pair_budget`] before looking at every pair.
     pub complete: bool,
+    /// The links of the mesh's vertices, where the triangles around every vertex a triangle
+    /// uses form one closed disc ([`Links::disc`]).
+    pub discs: Option<Links>,
     /// Work done, in the units of [`pair_budget`].
     #[cfg_attr(not(test), allow(dead_code))]
     spent: usize,
@@ -128,7 +132,7 @@ fn search(positions: &[DVec3], triangles: &[[u32; 3]]) -> Search {
     let solid: Vec<u32> = (0..triangles.len() as u32)
         .filter(|&t| !is_zero_area(corners(t as usize)))
         .collect();
-    let embedded = fans::embedded_valences(positions, triangles);
+    let (embedded, discs) = fans::embedded_valences(positions, triangles);
     let budget = pair_budget(triangles.len());
     let settled = hubs::settle(
         positions,
@@ -233,6 +237,7 @@ fn search(positions: &[DVec3], triangles: &[[u32; 3]]) -> Search {
     pairs.truncate(MAX_CROSSING_PAIRS);
     Search {
         complete: !over.into_inner() || pairs.len() >= MAX_CROSSING_PAIRS,
+        discs,
         spent: spent.into_inner(),
         pairs,
         offered: offered.into_inner(),
