@@ -617,11 +617,12 @@ fn open_at_step_1_since_the_crossing_line_judgement() {
     replay_file("open_step_1_crossing_line_judgement");
 }
 
-/// 73 bytes: step 3 is not a closed 2-manifold (30 triangles, 3 shells, volume 0.0019531250);
-/// closed on 795a405.
+/// 73 bytes: step 3 was not a closed 2-manifold (30 triangles, 3 shells, 4 boundary edges,
+/// volume 0.0019531250 right); closed on 795a405. Closed since a triangle and its reverse,
+/// a fin the weld laid flat, are dropped together (`cancel_reversed_pairs` in
+/// `mesh/repair/shells.rs`).
 #[test]
-#[ignore = "open: near-coplanar, since the crossing-line judgement — not a closed 2-manifold at step 3"]
-fn open_at_step_3_since_the_crossing_line_judgement() {
+fn flat_fin_at_step_3_since_the_crossing_line_judgement() {
     replay_file("open_step_3_crossing_line_judgement");
 }
 
@@ -680,34 +681,79 @@ fn replay_fork(hash: &str) {
     replay_file(&format!("round17_fork/{hash}"));
 }
 
-/// Every input of the round-17 fork run, replayed; the failures listed.
+/// The inputs of the round-17 fork run that pass now (each closed, manifold, needle-free, the
+/// mesh's volume the solid's and within the operation's bounds at every step), by hash.
+///
+/// 0948e42e, 1aeb92c4, 4ff3cfe7, d6e249f8, ec4e381d, f33d6823: a sliver about a tolerance
+/// thick between faces crossing at 10⁻¹¹ rad (ec4e381d: a box turned 1e-9° cut from a cube,
+/// intersected with another box turned 1e-9° whose face lies 10⁻¹² beside the hole's) that the
+/// first weld laid flat, a fin of triangles back to back on the solid's edge, its two sides
+/// paired with each other and the vertices where it met the solid split into two shells
+/// (ec4e381d: 4 boundary edges). A triangle and its reverse are now dropped together before the
+/// shells are split (`cancel_reversed_pairs` in `mesh/repair/shells.rs`).
+///
+/// 4c4a25bc, 7b9f78bf, 967a3be9, cf177d2c (the mesh's volume 10⁻⁸ off the solid's) and ea6f2083
+/// (a flat shell), all starting from a cube turned 1e-7°: its corners, judged across the
+/// crossing lines of faces 1.4e-9 rad apart, read ±7e-19 off them against a band of 2.6e-21
+/// (`eps` times the sine), below the rounding of the lines' own position (4.4e-16 for planes
+/// anchored 0.25 apart); judged within that (`Crossing::rounding` in `polygon/planes.rs`),
+/// both operands count them on the lines.
+const FORK_PASSING: [&str; 11] = [
+    "0948e42e", "1aeb92c4", "4c4a25bc", "4ff3cfe7", "7b9f78bf", "967a3be9", "cf177d2c", "d6e249f8",
+    "ea6f2083", "ec4e381d", "f33d6823",
+];
+
+/// Replays every input of the round-17 fork run in `hashes`, and checks each passes without
+/// tiny rotations; the failures with tiny rotations listed.
+fn fork_failures(hashes: &[&str]) -> Vec<String> {
+    let mut failures = Vec::new();
+    for hash in hashes {
+        let path = format!(
+            "{}/tests/fuzz_findings/booleans/round17_fork/{hash}.bin",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let data = std::fs::read(&path).unwrap();
+        assert!(
+            program::run(&data, false).is_ok(),
+            "{hash} fails without tiny rotations"
+        );
+        if let Err(e) = program::run(&data, true) {
+            failures.push(format!("{hash}: {e}"));
+        }
+    }
+    failures
+}
+
+/// The inputs of the round-17 fork run that pass now ([`FORK_PASSING`]).
 #[test]
-#[ignore = "open: near-coplanar — 38 inputs of round 17's fork run fail with tiny rotations on (17 not closed, 16 mesh volume off the solid's, 2 needles, 3 volume out of bounds), all pass with them off"]
+fn the_round_17_fork_run_inputs_that_pass() {
+    let failures = fork_failures(&FORK_PASSING);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Every other input of the round-17 fork run, replayed; the failures listed.
+#[test]
+#[ignore = "open: near-coplanar — 27 inputs of round 17's fork run fail with tiny rotations on (10 not closed, 12 mesh volume off the solid's, 2 needles, 3 volume out of bounds), all pass with them off"]
 fn the_round_17_fork_run_near_coplanar_inputs() {
     let dir = format!(
         "{}/tests/fuzz_findings/booleans/round17_fork",
         env!("CARGO_MANIFEST_DIR")
     );
-    let mut names: Vec<_> = std::fs::read_dir(&dir)
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
-        .map(|e| e.unwrap().path())
+        .map(|e| {
+            let name = e.unwrap().file_name().to_string_lossy().into_owned();
+            name.trim_end_matches(".bin").to_owned()
+        })
         .collect();
     names.sort();
     assert_eq!(names.len(), 38);
-    let mut failures = Vec::new();
-    for path in &names {
-        let data = std::fs::read(path).unwrap();
-        assert!(
-            program::run(&data, false).is_ok(),
-            "{path:?} fails without tiny rotations"
-        );
-        if let Err(e) = program::run(&data, true) {
-            failures.push(format!(
-                "{}: {e}",
-                path.file_name().unwrap().to_string_lossy()
-            ));
-        }
-    }
+    let open: Vec<&str> = names
+        .iter()
+        .map(String::as_str)
+        .filter(|n| !FORK_PASSING.contains(n))
+        .collect();
+    let failures = fork_failures(&open);
     assert!(
         failures.is_empty(),
         "{} failing:\n{}",

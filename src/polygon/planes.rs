@@ -76,6 +76,9 @@ pub(crate) struct Crossing {
     apart: DVec3,
     /// Whether `cut` faces against its normal in `apart`.
     flip: bool,
+    /// How far [`Crossing::side`] of a point on the line may read off zero by the rounding of
+    /// the line's own position (see [`Crossing::rounding`]).
+    rounding: f64,
 }
 
 impl Crossing {
@@ -94,11 +97,22 @@ impl Crossing {
             aligned(o.normal, first.normal),
             aligned(c.normal, first.normal),
         );
+        let rounding =
+            LINE_NOISE_ULPS * f64::EPSILON * (second.anchor - first.anchor).abs().max_element();
         Some(Crossing {
             on_line,
             apart: cut_n - own_n,
             flip: cut_n != cut.normal,
+            rounding,
         })
+    }
+
+    /// How far from zero [`Crossing::side`] may read for a point on the line, by the rounding
+    /// of the line's position alone: its point comes from the second plane's distance from
+    /// the first's anchor, rounded by a few ulps of their separation, over the sine across the
+    /// line, which `side` multiplies by the sine again.
+    pub(crate) fn rounding(&self) -> f64 {
+        self.rounding
     }
 
     /// The signed distance from `cut` of the point of `own` at `v` (a vertex of a polygon in
@@ -112,6 +126,10 @@ impl Crossing {
         if self.flip { -s } else { s }
     }
 }
+
+/// Units in the last place of the two planes' anchors' separation that the rounding of their
+/// crossing line's position amounts to in [`Crossing::side`].
+const LINE_NOISE_ULPS: f64 = 8.0;
 
 /// `n`, or its reverse, whichever faces the way `reference` does: two nearly parallel planes'
 /// canonical normals can face opposite ways (a first component of 1e-10 and −1e-10).

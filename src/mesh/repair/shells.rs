@@ -30,10 +30,84 @@ use crate::mesh::Mesh;
 /// Also returns the end points of half-edges left without a twin: the cracks.
 pub(super) fn split_into_shells(
     positions: Vec<DVec3>,
-    (triangles, sources): (Vec<[u32; 3]>, Vec<u32>),
+    (mut triangles, mut sources): (Vec<[u32; 3]>, Vec<u32>),
+    filled_from: &mut usize,
 ) -> (Mesh, Vec<DVec3>) {
-    let disc = one_disc(&triangles, positions.len());
+    let mut disc = one_disc(&triangles, positions.len());
+    if cancel_reversed_pairs(&mut triangles, &mut sources, &disc, filled_from) {
+        disc = one_disc(&triangles, positions.len());
+    }
     split_around_discs(positions, (triangles, sources), &disc)
+}
+
+/// Drops each triangle together with one that holds the same three vertices the other way
+/// round: a sheet with no inside, two faces a weld apart that the weld laid onto each other
+/// (a sliver 10⁻¹² thick between faces crossing at 10⁻¹¹ rad, left by the boolean as a fin on
+/// the solid's edge). Every edge of the pair is used once each way by it, so what is left
+/// pairs as before; the pair bounds no volume. Kept, the fin's two sides paired with each
+/// other, and the vertices where it meets the solid split into two shells with boundary edges.
+/// Only triangles before `filled_from` (where the flat fill's, which close a crack loop by the
+/// reverse of what it bounds, start; moved down by those dropped) and at a vertex that is not a
+/// disc (a pair's own corners never are, where it meets anything else) are looked at. True if
+/// any was dropped.
+fn cancel_reversed_pairs(
+    triangles: &mut Vec<[u32; 3]>,
+    sources: &mut Vec<u32>,
+    disc: &[bool],
+    filled_from: &mut usize,
+) -> bool {
+    // Each triangle rotated to start at its least vertex: a triangle and its reverse differ
+    // only in the order of the last two.
+    let rotated = |t: [u32; 3]| {
+        let k = (0..3).min_by_key(|&k| t[k]).expect("three corners");
+        [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+    };
+    let mut keyed: Vec<([u32; 3], u32)> = triangles
+        .iter()
+        .enumerate()
+        .take(*filled_from)
+        .filter(|(_, t)| {
+            t.iter().any(|&v| !disc[v as usize]) && t[0] != t[1] && t[1] != t[2] && t[0] != t[2]
+        })
+        .map(|(i, &t)| (rotated(t), i as u32))
+        .collect();
+    if keyed.len() < 2 {
+        return false;
+    }
+    keyed.sort_unstable();
+    let mut dropped = vec![false; triangles.len()];
+    let mut any = false;
+    for j in 0..keyed.len() {
+        let (key, i) = keyed[j];
+        if dropped[i as usize] || key[1] > key[2] {
+            continue;
+        }
+        let reverse = [key[0], key[2], key[1]];
+        let at = keyed.partition_point(|&(k, _)| k < reverse);
+        if let Some(m) = (at..keyed.len())
+            .take_while(|&m| keyed[m].0 == reverse)
+            .find(|&m| !dropped[keyed[m].1 as usize])
+        {
+            dropped[i as usize] = true;
+            dropped[keyed[m].1 as usize] = true;
+            any = true;
+        }
+    }
+    if !any {
+        return false;
+    }
+    *filled_from -= dropped.iter().filter(|&&d| d).count();
+    let mut k = 0;
+    triangles.retain(|_| {
+        k += 1;
+        !dropped[k - 1]
+    });
+    let mut k = 0;
+    sources.retain(|_| {
+        k += 1;
+        !dropped[k - 1]
+    });
+    true
 }
 
 /// [`split_into_shells`] with `disc` from [`one_disc`]: around a disc vertex every edge is used
@@ -340,5 +414,45 @@ fn pair_around(around: &[(u32, bool)], across_solid: bool, twin: &mut [u32]) {
             twin[h as usize] = partner;
             twin[partner as usize] = h;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::split_into_shells;
+
+    /// A tetrahedron with a fin on one edge: a triangle and its reverse, as the weld leaves a
+    /// sliver thinner than itself. The fin is dropped, the tetrahedron left whole and closed;
+    /// the fill's triangles (from `filled_from`) are not looked at.
+    #[test]
+    fn a_flat_fin_on_an_edge_is_dropped() {
+        let positions = vec![
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::Y,
+            DVec3::Z,
+            DVec3::new(0.5, -1.0, -1.0),
+        ];
+        let tetrahedron = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        let fin = [[0, 1, 4], [4, 1, 0]];
+        let triangles: Vec<[u32; 3]> = tetrahedron.iter().chain(&fin).copied().collect();
+        let sources = vec![0; triangles.len()];
+        let mut filled_from = triangles.len();
+        let (mesh, cracks) = split_into_shells(
+            positions.clone(),
+            (triangles.clone(), sources.clone()),
+            &mut filled_from,
+        );
+        assert!(cracks.is_empty(), "{cracks:?}");
+        assert_eq!(mesh.triangles.len(), 4);
+        assert_eq!(filled_from, 4);
+        assert!(mesh.report().is_closed_manifold(), "{}", mesh.report());
+        assert!((mesh.volume() - 1.0 / 6.0).abs() < 1e-15);
+        // The fin as the fill's: kept.
+        let mut filled_from = 4;
+        let (mesh, _) = split_into_shells(positions, (triangles, sources), &mut filled_from);
+        assert_eq!((mesh.triangles.len(), filled_from), (6, 4));
     }
 }
