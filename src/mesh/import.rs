@@ -451,18 +451,14 @@ impl<'a> Merger<'a> {
 
 #[cfg(test)]
 mod tests {
-    use crate::{boolean, BoolOp, Mesh, Solid};
+    use crate::{BoolOp, Mesh, Solid, boolean};
     use glam::DVec3;
 
     /// Triangle `t` of `positions` turned to face away from `centre`.
     fn outward(positions: &[DVec3], t: [u32; 3], centre: DVec3) -> [u32; 3] {
         let [a, b, c] = t.map(|i| positions[i as usize]);
         let facing = (b - a).cross(c - a).dot((a + b + c) / 3.0 - centre);
-        if facing > 0.0 {
-            t
-        } else {
-            [t[0], t[2], t[1]]
-        }
+        if facing > 0.0 { t } else { [t[0], t[2], t[1]] }
     }
 
     /// A plate 2e-10 thick whose top and bottom are each two triangles of one source, merged
