@@ -160,7 +160,10 @@ pub const MAX_SCENE_POLYGONS: u64 = crate::primitives::MAX_POLYGONS;
 /// about a minute and 1–2 GB on a 2-core machine (twenty unions of one 10,000-point polygon
 /// extruded, 6·10⁶, take 38 s and 1 GB). Past it — 300 references to one 10,000-point polygon,
 /// 100,000 overlapping boxes, four unit spheres at a tolerance of 2.4·10⁻⁶ — the export is
-/// refused at once, saying what to change.
+/// refused at once, saying what to change. The estimate counts corners, not how the kernel
+/// fares with them: faces of different primitives that nearly coincide (copies of one
+/// 10,000-point outline a little apart: four took over 10 minutes and 3 GB) cost far more, and
+/// are not bounded by it.
 pub const MAX_SCENE_WORK: u64 = 1 << 24;
 
 /// What the BSP route would make of a scene at one tolerance, counted before tessellating.
