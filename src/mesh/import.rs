@@ -114,14 +114,17 @@ pub(crate) struct MeshPolygons {
     /// - the triangles around every vertex form one closed disc (the crossing check's links);
     /// - no triangle was skipped for its zero area (its corners would lack it);
     /// - no merged polygon has more than [`DISC_CORNERS`] corners, or two corners not next to
-    ///   each other that an edge of a triangle outside it joins ([`Merger::chords_are_inside`]).
+    ///   each other that an edge of a triangle outside it joins ([`Merger::chords_are_inside`]);
+    /// - no two merged polygons share such a pair of corners (a chord of both).
     ///
     /// A merged polygon's triangles have no vertex inside it, so those at one of its corners
     /// `v` are a fan through its other corners, a stretch of `v`'s disc from the corner after
     /// `v` to the one before. Fanned again from another corner, the stretch between the same
     /// two ends runs through other corners of the polygon; these are in no other polygon's
-    /// stretch, since no triangle outside it joins them to `v`. So the link stays one cycle
-    /// through distinct vertices.
+    /// stretch, fanned either way, since no triangle outside it joins them to `v` and no other
+    /// polygon has them as corners with `v`. So the link stays one cycle through distinct
+    /// vertices. (Faces merged within the merge's tolerance of a plane may be two sides of a
+    /// plate thinner than it, with one chord across both.)
     pub discs_if_apart: Option<usize>,
 }
 
@@ -250,7 +253,12 @@ fn merge_coplanar(
         merger.done[seed] = true;
         out.push(merger.grow(seed, polygon));
     }
-    (out, merger.chords_inside)
+    // Two merged polygons with the same chord would each put the other corner in a corner's
+    // link when fanned across it: the link then passes through one vertex twice.
+    let chords = &mut merger.chords;
+    chords.sort_unstable();
+    let chords_apart = chords.windows(2).all(|w| w[0] != w[1]);
+    (out, merger.chords_inside && chords_apart)
 }
 
 /// An edge used by more than one triangle in the same direction.
@@ -281,6 +289,9 @@ struct Merger<'a> {
     /// The current ring's edges that merges replaced (the diagonals of its triangles), while
     /// it has at most [`DISC_CORNERS`] corners.
     diagonals: [(u32, u32); DISC_CORNERS - 3],
+    /// The chords of the merged polygons so far (pairs of corners not next to each other that
+    /// no edge joins), lower vertex first, while every one has its chords inside.
+    chords: Vec<(u32, u32)>,
 }
 
 impl<'a> Merger<'a> {
@@ -316,6 +327,7 @@ impl<'a> Merger<'a> {
             links: None,
             chords_inside: false,
             diagonals: [(UNSET, UNSET); DISC_CORNERS - 3],
+            chords: Vec::new(),
         }
     }
 
@@ -332,23 +344,30 @@ impl<'a> Merger<'a> {
     }
 
     /// Whether no two corners of the merged polygon `ring` (at most [`DISC_CORNERS`] of them)
-    /// not next to each other are joined by an edge of a triangle outside it.
+    /// not next to each other are joined by an edge of a triangle outside it; the pairs no
+    /// edge joins (its chords) are kept in `chords`, for [`merge_coplanar`] to check that no
+    /// other polygon has them.
     ///
     /// The polygon's own triangles join such corners only along the ring edges its merges
     /// replaced (`diagonals`); the mesh being closed, each of those is used by the two
     /// triangles beside it and no third. Any other pair must be no edge at all: the second is
     /// not in the first's link.
-    fn chords_are_inside(&self, links: &Links, ring: &[u32]) -> bool {
+    fn chords_are_inside(&mut self, links: &Links, ring: &[u32]) -> bool {
         let n = ring.len();
-        let diagonals = &self.diagonals[..n - 3];
-        (0..n).all(|i| {
-            (i + 2..n - usize::from(i == 0)).all(|j| {
+        for i in 0..n {
+            for j in i + 2..n - usize::from(i == 0) {
                 let (u, w) = (ring[i], ring[j]);
-                diagonals.contains(&(u, w))
-                    || diagonals.contains(&(w, u))
-                    || links.of(u as usize).iter().all(|e| e.0 != w)
-            })
-        })
+                let diagonals = &self.diagonals[..n - 3];
+                if diagonals.contains(&(u, w)) || diagonals.contains(&(w, u)) {
+                    continue;
+                }
+                if links.of(u as usize).iter().any(|e| e.0 == w) {
+                    return false;
+                }
+                self.chords.push((u.min(w), u.max(w)));
+            }
+        }
+        true
     }
 
     /// Strictly convex at b: a left turn about `normal`, beyond rounding.
@@ -427,5 +446,82 @@ impl<'a> Merger<'a> {
             || !self.convex(plane.normal, u, w, v)
             || !self.convex(plane.normal, w, v, self.next[v as usize]);
         (!refused).then_some((t, w))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{BoolOp, Mesh, Solid, boolean};
+    use glam::DVec3;
+
+    /// Triangle `t` of `positions` turned to face away from `centre`.
+    fn outward(positions: &[DVec3], t: [u32; 3], centre: DVec3) -> [u32; 3] {
+        let [a, b, c] = t.map(|i| positions[i as usize]);
+        let facing = (b - a).cross(c - a).dot((a + b + c) / 3.0 - centre);
+        if facing > 0.0 { t } else { [t[0], t[2], t[1]] }
+    }
+
+    /// A plate 2e-10 thick whose top and bottom are each two triangles of one source, merged
+    /// into quads within the tolerance a far box sets, both with the chord from (-1,0,0) to
+    /// (1,0,0). Fanned across that chord, both quads put the same corner twice in each pole's
+    /// link: the edge between the poles in four triangles. The mesh is not discs by position,
+    /// and a boolean that keeps the plate whole must still give a closed 2-manifold.
+    #[test]
+    fn two_polygons_with_one_chord_are_not_discs_by_position() {
+        let h = 1e-10;
+        let mut positions = vec![
+            DVec3::new(-1.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(0.0, 1.0, h),
+            DVec3::new(0.0, -1.0, h),
+            DVec3::new(0.0, 1.0, -h),
+            DVec3::new(0.0, -1.0, -h),
+        ];
+        let plate: [([u32; 3], u32); 8] = [
+            ([0, 3, 2], 0),
+            ([1, 2, 3], 0),
+            ([0, 4, 5], 1),
+            ([1, 5, 4], 1),
+            ([0, 2, 4], 2),
+            ([1, 4, 2], 3),
+            ([0, 5, 3], 4),
+            ([1, 3, 5], 5),
+        ];
+        let mut triangles: Vec<[u32; 3]> = plate
+            .iter()
+            .map(|(t, _)| outward(&positions, *t, DVec3::ZERO))
+            .collect();
+        let mut sources: Vec<u32> = plate.iter().map(|(_, s)| *s).collect();
+        // A unit box far away widens the merge's tolerance past the plate's thickness.
+        let (corner, base) = (DVec3::splat(500.0), positions.len() as u32);
+        positions.extend((0..8).map(|i| {
+            corner + DVec3::new((i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2 & 1) as f64)
+        }));
+        let faces = [
+            [0, 1, 3, 2],
+            [4, 6, 7, 5],
+            [0, 4, 5, 1],
+            [2, 3, 7, 6],
+            [0, 2, 6, 4],
+            [1, 5, 7, 3],
+        ];
+        for (k, f) in faces.iter().enumerate() {
+            for t in [[f[0], f[1], f[2]], [f[0], f[2], f[3]]] {
+                let t = t.map(|i| i + base);
+                triangles.push(outward(&positions, t, corner + DVec3::splat(0.5)));
+                sources.push(10 + k as u32);
+            }
+        }
+        let mesh = Mesh {
+            positions,
+            triangles,
+            sources,
+        };
+        let plate = Solid::from_mesh(&mesh).unwrap();
+        assert!(!plate.clone().into_parts().1.unwrap().discs());
+        let kept = boolean(&plate, &Solid::cube(4.0).unwrap(), BoolOp::Intersection).to_mesh();
+        let report = kept.report();
+        assert!(report.is_closed_manifold(), "{report}");
+        assert_eq!(kept.triangles.len(), 8);
     }
 }

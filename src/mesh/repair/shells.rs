@@ -44,8 +44,9 @@ pub(super) fn split_into_shells(
 /// round: a sheet with no inside, two faces a weld apart that the weld laid onto each other
 /// (a sliver 10⁻¹² thick between faces crossing at 10⁻¹¹ rad, left by the boolean as a fin on
 /// the solid's edge). Every edge of the pair is used once each way by it, so what is left
-/// pairs as before; the pair bounds no volume. Kept, the fin's two sides paired with each
-/// other, and the vertices where it meets the solid split into two shells with boundary edges.
+/// pairs as before; the pair bounds no volume. Kept, the fin's sides pair by the order of
+/// their half-edges, their angles being equal: in the case traced they paired with each other,
+/// and the vertices where the fin meets the solid split into two shells with boundary edges.
 /// Only triangles before `filled_from` (where the flat fill's, which close a crack loop by the
 /// reverse of what it bounds, start; moved down by those dropped) and at a vertex that is not a
 /// disc (a pair's own corners never are, where it meets anything else) are looked at. True if
