@@ -381,6 +381,12 @@ impl fmt::Display for MeshDefect {
                 first[0],
                 first[1]
             ),
+            // Corners all at the origin coincide at any scale: nothing to move.
+            MeshDefect::AllZeroArea { triangles, reach } if *reach == 0.0 => write!(
+                f,
+                "all {triangles} triangles have zero area: every corner is at the origin, the \
+                 mesh bounds no volume"
+            ),
             MeshDefect::AllZeroArea { triangles, reach } => write!(
                 f,
                 "all {triangles} triangles have zero area within the rounding of their \

@@ -552,6 +552,7 @@ fn a_mesh_whose_distinct_corners_coincide_is_refused_as_geometry() {
             "coincident.obj",
             "v 0 0 0\nv 0 0 0\nv 1 0 0\nv 1 0 0\nf 1 2 3\nf 3 4 1\n",
         ),
+        ("origin.obj", "v 0 0 0\nv 0 0 0\nv 0 0 0\nf 1 2 3\n"),
     ] {
         let p = dir.join(name);
         fs::write(&p, text).unwrap();
@@ -567,6 +568,13 @@ fn a_mesh_whose_distinct_corners_coincide_is_refused_as_geometry() {
             "{name}: {e:?}"
         );
         assert!(e.to_string().contains(name), "{name}: {e}");
+        // Only a mesh away from the origin is told to move nearer it.
+        let at_origin = name == "origin.obj";
+        assert_eq!(
+            e.to_string().contains("move it nearer the origin"),
+            !at_origin,
+            "{name}: {e}"
+        );
     }
 }
 

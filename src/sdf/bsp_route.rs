@@ -133,6 +133,7 @@ impl Scene {
             cell,
             world,
             min_segments,
+            max_angle: opts.max_angle,
         }))
     }
 }
@@ -145,6 +146,8 @@ struct Ctx<'a> {
     world: Aabb,
     /// The fewest segments a full turn gets, from the angle bound.
     min_segments: u32,
+    /// The angle bound, where the options give one (not the default tessellation's).
+    max_angle: Option<f64>,
 }
 
 /// The most polygons the BSP route tessellates for a whole scene: as many as one primitive may
@@ -242,13 +245,23 @@ impl Ctx<'_> {
         } else {
             None
         };
-        Err(match fitting {
-            Some(t) => Error::param(
+        Err(match (fitting, self.max_angle) {
+            (Some(t), _) => Error::param(
                 "tolerance",
                 self.tol,
                 format!("{over}; use a tolerance of at least {t:.2e}, or fewer round primitives"),
             ),
-            None => Error::Scene {
+            // A max_angle given sets the round parts' segments at any tolerance: name it.
+            (None, Some(angle)) if 2 * e.round > e.corners => Error::param(
+                "max_angle",
+                angle,
+                format!(
+                    "{over}; it sets {} segments to a turn at any tolerance: use a larger one, \
+                     or fewer round primitives",
+                    self.min_segments
+                ),
+            ),
+            (None, _) => Error::Scene {
                 file: None,
                 json_path: "$".into(),
                 message: format!(
@@ -675,5 +688,38 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A sphere at `max_angle` 0.1° has 3,600 segments to a turn, 6.48 million polygons, at
+    /// any tolerance: the refusal names the angle (it was an `Error::Scene` saying a tolerance
+    /// changes only round parts, with a sphere the only part).
+    #[test]
+    fn a_budget_refusal_where_the_angle_bound_decides_names_max_angle() {
+        let scene = Scene::from_json_str(
+            r#"{"kind":"sdf_primitive","data":{"primitive_type":"sphere","radius":1}}"#,
+        )
+        .unwrap();
+        let opts = TessellationOptions {
+            max_angle: Some(0.1),
+            ..TessellationOptions::with_tolerance(0.01)
+        };
+        let refusal = scene.to_solid(&opts).unwrap_err();
+        let Error::InvalidParameter {
+            name,
+            value,
+            reason,
+        } = &refusal
+        else {
+            panic!("{refusal:?}");
+        };
+        assert_eq!((*name, *value), ("max_angle", 0.1), "{refusal}");
+        assert!(reason.contains("3600 segments to a turn"), "{refusal}");
+        // A larger angle fits.
+        let opts = TessellationOptions {
+            max_angle: Some(1.0),
+            ..opts
+        };
+        let ctx = scene.bsp_context(&opts).unwrap().unwrap();
+        assert!(ctx.check_budget(scene.root).is_ok());
     }
 }

@@ -130,6 +130,7 @@ mod tests {
             cell: 0.04,
             world: Aabb::new(DVec3::new(0.0, -1.0, -1.5), DVec3::new(1.0, 1.0, 1.5)),
             min_segments: 3,
+            max_angle: None,
         };
         for k in 0..40 {
             let half = 1e6 * (1.0 + f64::from(k) / 7.0);
