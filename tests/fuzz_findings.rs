@@ -703,13 +703,14 @@ const FORK_PASSING: [&str; 11] = [
     "ea6f2083", "ec4e381d", "f33d6823",
 ];
 
-/// Replays every input of the round-17 fork run in `hashes`, and checks each passes without
-/// tiny rotations; the failures with tiny rotations listed.
-fn fork_failures(hashes: &[&str]) -> Vec<String> {
+/// Replays every input in `hashes` of the fork run kept in `run` (`round17_fork`,
+/// `round18_fork`), and checks each passes without tiny rotations; the failures with tiny
+/// rotations listed.
+fn fork_failures(run: &str, hashes: &[&str]) -> Vec<String> {
     let mut failures = Vec::new();
     for hash in hashes {
         let path = format!(
-            "{}/tests/fuzz_findings/booleans/round17_fork/{hash}.bin",
+            "{}/tests/fuzz_findings/booleans/{run}/{hash}.bin",
             env!("CARGO_MANIFEST_DIR")
         );
         let data = std::fs::read(&path).unwrap();
@@ -727,7 +728,7 @@ fn fork_failures(hashes: &[&str]) -> Vec<String> {
 /// The inputs of the round-17 fork run that pass now ([`FORK_PASSING`]).
 #[test]
 fn the_round_17_fork_run_inputs_that_pass() {
-    let failures = fork_failures(&FORK_PASSING);
+    let failures = fork_failures("round17_fork", &FORK_PASSING);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
@@ -735,8 +736,26 @@ fn the_round_17_fork_run_inputs_that_pass() {
 #[test]
 #[ignore = "open: near-coplanar — 27 inputs of round 17's fork run fail with tiny rotations on (10 not closed, 12 mesh volume off the solid's, 2 needles, 3 volume out of bounds), all pass with them off"]
 fn the_round_17_fork_run_near_coplanar_inputs() {
+    let names = fork_run_inputs("round17_fork");
+    assert_eq!(names.len(), 38);
+    let open: Vec<&str> = names
+        .iter()
+        .map(String::as_str)
+        .filter(|n| !FORK_PASSING.contains(n))
+        .collect();
+    let failures = fork_failures("round17_fork", &open);
+    assert!(
+        failures.is_empty(),
+        "{} failing:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// The inputs kept of the fork run `run`, by hash, sorted.
+fn fork_run_inputs(run: &str) -> Vec<String> {
     let dir = format!(
-        "{}/tests/fuzz_findings/booleans/round17_fork",
+        "{}/tests/fuzz_findings/booleans/{run}",
         env!("CARGO_MANIFEST_DIR")
     );
     let mut names: Vec<String> = std::fs::read_dir(&dir)
@@ -747,19 +766,52 @@ fn the_round_17_fork_run_near_coplanar_inputs() {
         })
         .collect();
     names.sort();
-    assert_eq!(names.len(), 38);
-    let open: Vec<&str> = names
-        .iter()
-        .map(String::as_str)
-        .filter(|n| !FORK_PASSING.contains(n))
-        .collect();
-    let failures = fork_failures(&open);
+    names
+}
+
+// Found by a 10-minute `booleans` run in round 18 with libFuzzer's fork mode (seed 1801,
+// `-fork=1 -ignore_crashes=1`, 84,447 executions in 604 s, on main after the fin drop and the
+// crossing-line band): 69 failing inputs, every one passing with tiny rotations off, kept in
+// `tests/fuzz_findings/booleans/round18_fork/` (named by the artifact's hash), not minimised.
+// By kind: 37 not closed, 22 with the mesh's volume off the solid's, 8 with the solid's volume
+// outside its bounds, 2 closed with one needle. 67 also fail at e991b46 (the round's start);
+// the other two are named below: each came with one of this round's changes.
+
+/// Every input of the round-18 fork run, replayed; the failures listed.
+#[test]
+#[ignore = "open: near-coplanar — 69 inputs of round 18's fork run fail with tiny rotations on (37 not closed, 22 mesh volume off the solid's, 8 volume out of bounds, 2 needles), all pass with them off"]
+fn the_round_18_fork_run_near_coplanar_inputs() {
+    let names = fork_run_inputs("round18_fork");
+    assert_eq!(names.len(), 69);
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    let failures = fork_failures("round18_fork", &names);
     assert!(
         failures.is_empty(),
         "{} failing:\n{}",
         failures.len(),
         failures.join("\n")
     );
+}
+
+/// From the round-18 fork run (a03b7e97): step 2's mesh volume 0.32261407249 against the
+/// solid's 0.32261407409 (1.6e-9 less). Passes at e991b46 and fails from f704544 on, where a
+/// triangle and its reverse are dropped together before the shells are split: the dropped pair
+/// was not only a fin. Not traced.
+#[test]
+#[ignore = "open: came with the fin drop (f704544) — step 2's mesh volume 1.6e-9 below the solid's"]
+fn a_fin_drop_takes_volume_from_the_mesh() {
+    let failures = fork_failures("round18_fork", &["a03b7e97"]);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// From the round-18 fork run (b153683f): step 1's union, 90 triangles in 2 shells, has a
+/// closed shell of no volume (a flat one). Passes at f704544 and fails from 70fbf14 on, where a
+/// vertex judged across a crossing line is on it within the line's own rounding. Not traced.
+#[test]
+#[ignore = "open: came with the crossing-line band (70fbf14) — step 1 leaves a flat closed shell"]
+fn the_crossing_line_band_leaves_a_flat_shell() {
+    let failures = fork_failures("round18_fork", &["b153683f"]);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
 /// From the fork run (crash-33894a02…, 84 bytes): a unit cube turned 1e-7° less a box turned
