@@ -736,37 +736,37 @@ fn the_round_17_fork_run_inputs_that_pass() {
 #[test]
 #[ignore = "open: near-coplanar — 27 inputs of round 17's fork run fail with tiny rotations on (10 not closed, 12 mesh volume off the solid's, 2 needles, 3 volume out of bounds), all pass with them off"]
 fn the_round_17_fork_run_near_coplanar_inputs() {
-    let names = fork_run_inputs("round17_fork");
-    assert_eq!(names.len(), 38);
-    let open: Vec<&str> = names
-        .iter()
-        .map(String::as_str)
-        .filter(|n| !FORK_PASSING.contains(n))
-        .collect();
-    let failures = fork_failures("round17_fork", &open);
-    assert!(
-        failures.is_empty(),
-        "{} failing:\n{}",
-        failures.len(),
-        failures.join("\n")
-    );
+    assert_fork_run_passes("round17_fork", 38, &FORK_PASSING);
 }
 
-/// The inputs kept of the fork run `run`, by hash, sorted.
-fn fork_run_inputs(run: &str) -> Vec<String> {
+/// Replays every input kept of the fork run `run` (there are `kept` of them) but those in
+/// `skipped`, and fails listing those that fail (see [`fork_failures`]).
+fn assert_fork_run_passes(run: &str, kept: usize, skipped: &[&str]) {
     let dir = format!(
         "{}/tests/fuzz_findings/booleans/{run}",
         env!("CARGO_MANIFEST_DIR")
     );
-    let mut names: Vec<String> = std::fs::read_dir(&dir)
+    let names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| {
             let name = e.unwrap().file_name().to_string_lossy().into_owned();
             name.trim_end_matches(".bin").to_owned()
         })
         .collect();
-    names.sort();
-    names
+    assert_eq!(names.len(), kept);
+    let mut open: Vec<&str> = names
+        .iter()
+        .map(String::as_str)
+        .filter(|n| !skipped.contains(n))
+        .collect();
+    open.sort_unstable();
+    let failures = fork_failures(run, &open);
+    assert!(
+        failures.is_empty(),
+        "{} failing:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }
 
 // Found by a 10-minute `booleans` run in round 18 with libFuzzer's fork mode (seed 1801,
@@ -781,16 +781,7 @@ fn fork_run_inputs(run: &str) -> Vec<String> {
 #[test]
 #[ignore = "open: near-coplanar — 69 inputs of round 18's fork run fail with tiny rotations on (37 not closed, 22 mesh volume off the solid's, 8 volume out of bounds, 2 needles), all pass with them off"]
 fn the_round_18_fork_run_near_coplanar_inputs() {
-    let names = fork_run_inputs("round18_fork");
-    assert_eq!(names.len(), 69);
-    let names: Vec<&str> = names.iter().map(String::as_str).collect();
-    let failures = fork_failures("round18_fork", &names);
-    assert!(
-        failures.is_empty(),
-        "{} failing:\n{}",
-        failures.len(),
-        failures.join("\n")
-    );
+    assert_fork_run_passes("round18_fork", 69, &[]);
 }
 
 /// From the round-18 fork run (a03b7e97): step 2's mesh volume 0.32261407249 against the

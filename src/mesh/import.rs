@@ -493,25 +493,15 @@ mod tests {
             .collect();
         let mut sources: Vec<u32> = plate.iter().map(|(_, s)| *s).collect();
         // A unit box far away widens the merge's tolerance past the plate's thickness.
-        let (corner, base) = (DVec3::splat(500.0), positions.len() as u32);
-        positions.extend((0..8).map(|i| {
-            corner + DVec3::new((i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2 & 1) as f64)
-        }));
-        let faces = [
-            [0, 1, 3, 2],
-            [4, 6, 7, 5],
-            [0, 4, 5, 1],
-            [2, 3, 7, 6],
-            [0, 2, 6, 4],
-            [1, 5, 7, 3],
-        ];
-        for (k, f) in faces.iter().enumerate() {
-            for t in [[f[0], f[1], f[2]], [f[0], f[2], f[3]]] {
-                let t = t.map(|i| i + base);
-                triangles.push(outward(&positions, t, corner + DVec3::splat(0.5)));
-                sources.push(10 + k as u32);
-            }
-        }
+        let far = Solid::cube(1.0)
+            .unwrap()
+            .translate(DVec3::splat(500.5))
+            .unwrap()
+            .to_mesh();
+        let base = positions.len() as u32;
+        positions.extend(&far.positions);
+        triangles.extend(far.triangles.iter().map(|t| t.map(|i| i + base)));
+        sources.extend(far.sources.iter().map(|s| s + 10));
         let mesh = Mesh {
             positions,
             triangles,
