@@ -109,6 +109,26 @@ pub enum Error {
         eps: f64,
     },
 
+    /// A boolean stopped at its work budget: its clipping cut the polygons into pieces with
+    /// more corners than [`MAX_BOOLEAN_WORK`](crate::MAX_BOOLEAN_WORK) allows (or
+    /// [`WORK_PER_POLYGON`](crate::WORK_PER_POLYGON) per polygon of large operands; see
+    /// [`Solid::check_budget`](crate::Solid::check_budget)). It happens where faces of
+    /// different operands nearly coincide over a wide area. Remedy: move such parts apart, or
+    /// make them coincide exactly, or give them fewer points.
+    #[error(
+        "beyond the work budget: the booleans had cut their polygons into pieces of {work} \
+         corners in all when they were stopped, more than the budget of {limit} (about half a \
+         minute); faces of different operands nearly coincide over a wide area (as copies of \
+         one detailed outline a little apart do): move such parts apart or make them coincide \
+         exactly, or give them fewer points"
+    )]
+    BeyondBudget {
+        /// The corners of the pieces cut when the booleans were stopped.
+        work: u64,
+        /// The budget.
+        limit: u64,
+    },
+
     /// A solid's mesh is not a closed 2-manifold though it should be (the result of booleans
     /// of solids): a fault of the kernel on hard input, reported by
     /// [`Solid::to_checked_mesh`](crate::Solid::to_checked_mesh) instead of passed on. A caller

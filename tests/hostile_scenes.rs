@@ -1,5 +1,6 @@
 //! Hostile and extreme scene exports: the polygon, boolean-work and outline budgets refused
-//! before any work with what to change, and parts thinner than a cell named (issue 12).
+//! before any work with what to change, booleans stopped at the work budget where faces nearly
+//! coincide, and parts thinner than a cell named (issue 12).
 
 mod common;
 
@@ -16,6 +17,11 @@ use common::run::{Run, Scratch, bspcsg, refused};
 /// at load average 11 (2 cores), so the bound leaves room for a loaded machine and still tells
 /// a refusal from the work.
 const AT_ONCE: Duration = Duration::from_secs(30);
+
+/// How soon booleans stopped at their work budget must be refused: after some work (46 copies
+/// of a 10,000-point outline: 8 CPU-s, 16 s wall on a loaded 2-core machine, 1.6 GB), where
+/// the work ran past 6 minutes and 14 GB before, so a bound of minutes still tells them apart.
+const STOPPED_SOON: Duration = Duration::from_secs(150);
 
 /// `bspcsg export ARGS… -o OUT`, refused with exit 1 before any work, saying each of `needles`
 /// and writing nothing. "Before any work" is checked as within [`AT_ONCE`].
@@ -232,6 +238,87 @@ fn scene_exports_over_the_work_budget_are_refused_before_any_work() {
         .parse()
         .unwrap();
     assert!(enough > 2.4e-6 && enough < 1e-5, "{enough}");
+}
+
+/// A scene of `copies` extrusions of one 10,000-point wavy outline, each 0.01 and 0.013 from
+/// the last in x and y: their walls nearly coincide all along.
+fn wavy_copies(copies: u32) -> String {
+    let refs: Vec<String> = (0..copies)
+        .map(|i| {
+            format!(
+                r#"{{"op":"extrude","source_2d_sdf":"p","extrude_depth":1,"pos":[{},{},0]}}"#,
+                0.01 * f64::from(i),
+                0.013 * f64::from(i)
+            )
+        })
+        .collect();
+    format!(
+        r#"{{"kind":"sdf_scene","version":1,"sdf_2d":{{"p":{{"type":"polygon","points":[{}]}}}},"tree":{{"op":"union","children":[{}]}}}}"#,
+        wavy_polygon(10_000).join(","),
+        refs.join(",")
+    )
+}
+
+/// The work estimate counts corners; copies of one detailed outline a little apart cost the
+/// kernel far more (each wall is cut at the planes of the other's it crosses): 46 such copies
+/// pass the estimate (16.5 M of 16.8 M) and ran past 14 GB. The booleans' own meter stops them
+/// once the pieces cut pass the same budget: exit 1 within seconds (see [`STOPPED_SOON`]),
+/// saying what to change.
+#[test]
+fn nearly_coinciding_copies_are_stopped_at_the_work_budget() {
+    let dir = Scratch::new("cut-budget");
+    let scene = dir.path("copies.json");
+    fs::write(&scene, wavy_copies(46)).unwrap();
+    let out = dir.path("copies.obj");
+    let t = Instant::now();
+    refused(
+        &["export".as_ref(), scene.as_os_str()],
+        &out,
+        1,
+        &[
+            "copies.json: $: beyond the work budget",
+            "budget of 16777216",
+            "nearly coincide",
+            "2D shapes of fewer points",
+            "--via sdf",
+        ],
+    );
+    let took = t.elapsed();
+    assert!(took < STOPPED_SOON, "stopped in {took:?}");
+}
+
+/// The library's booleans stop at the same budget: eight copies united by `boolean_all` come
+/// back empty and marked, and the mark is an error where the result is checked.
+#[test]
+fn a_union_of_nearly_coinciding_copies_is_an_error_not_a_runaway() {
+    let scene = bspcsg::Scene::from_json_str(&wavy_copies(1)).unwrap();
+    let one = scene
+        .to_solid(&bspcsg::TessellationOptions::default())
+        .unwrap();
+    let copies: Vec<bspcsg::Solid> = (0..8)
+        .map(|i| {
+            let i = f64::from(i);
+            one.clone()
+                .translate(bspcsg::glam::DVec3::new(0.01 * i, 0.013 * i, 0.0))
+                .unwrap()
+        })
+        .collect();
+    let t = Instant::now();
+    let all = bspcsg::boolean_all(copies, bspcsg::BoolOp::Union);
+    let took = t.elapsed();
+    assert!(all.is_empty());
+    assert!(took < STOPPED_SOON, "stopped in {took:?}");
+    match all.to_checked_mesh() {
+        Err(Error::BeyondBudget { work, limit }) => {
+            assert_eq!(limit, bspcsg::MAX_BOOLEAN_WORK);
+            assert!(work > limit, "{work}");
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(matches!(
+        all.check_budget(),
+        Err(Error::BeyondBudget { .. })
+    ));
 }
 
 /// A scene whose only part is thinner than a marching-cubes cell: the export says the part

@@ -5,6 +5,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+use super::meter::{CHARGE_EVERY, Meter};
 use super::{Kind, Label, Link, Surface, Tree};
 use crate::geom::Aabb;
 use crate::hash::FxHashMap;
@@ -47,20 +48,29 @@ struct Work {
 impl Tree {
     /// Clips `polygons` against the tree and keeps the fragments in regions labelled `keep`.
     /// `surface` (the tree's solid) labels fragments whose point location ends in an unbuilt
-    /// cell.
+    /// cell. The corners of the pieces cut are charged to `meter`; once it is past its limit
+    /// the clip stops, and what it returns is incomplete (the caller asks the meter).
     pub fn clip(
         &self,
         polygons: Vec<Polygon>,
         keep: Label,
         rule: Coplanar,
         surface: &Surface,
+        meter: &Meter,
     ) -> Vec<Clipped> {
+        if meter.exceeded() {
+            return Vec::new();
+        }
         if polygons.len() < PARALLEL_MIN {
             let mut out = Vec::with_capacity(polygons.len());
             let mut scratch = Scratch::default();
             for p in polygons {
                 self.clip_one(p, keep, rule, surface, &mut scratch, &mut out);
+                if scratch.cut >= CHARGE_EVERY && !meter.charge(std::mem::take(&mut scratch.cut)) {
+                    break;
+                }
             }
+            meter.charge(scratch.cut);
             return out;
         }
         // One scratch per piece of work rayon splits off, not per chunk: the points labelled
@@ -70,9 +80,19 @@ impl Tree {
             .chunks(CHUNK)
             .map_init(Scratch::default, |scratch, chunk| {
                 let mut out = Vec::with_capacity(chunk.len());
+                if meter.exceeded() {
+                    return out;
+                }
                 for p in chunk {
                     self.clip_one(p, keep, rule, surface, scratch, &mut out);
+                    if scratch.cut >= CHARGE_EVERY
+                        && !meter.charge(std::mem::take(&mut scratch.cut))
+                    {
+                        break;
+                    }
                 }
+                // The rest now: the scratch may serve no further chunk.
+                meter.charge(std::mem::take(&mut scratch.cut));
                 out
             })
             .collect();
@@ -92,6 +112,7 @@ impl Tree {
             stack,
             labelled,
             recent,
+            cut,
         } = scratch;
         let eps = self.eps;
         let margin = 2.0 * eps;
@@ -168,6 +189,7 @@ impl Tree {
                         w.coplanar |= is_face;
                     }
                     Split::Spanning { front, back } => {
+                        *cut += (front.vertices().len() + back.vertices().len()) as u64;
                         stack.push(Work {
                             bbox: back.bbox(),
                             polygon: back,
@@ -288,12 +310,14 @@ const LOCAL_MAX: usize = 64;
 /// Per rayon job of a clip: the work stack; per unbuilt cell the last point labelled in it (the
 /// cell is convex: a segment between two of its points meets only its few polygons), and the
 /// last few labelled anywhere (fragments in a row are neighbours, so a segment from the
-/// nearest of them to a cell not seen yet is still short).
+/// nearest of them to a cell not seen yet is still short); the corners of the pieces cut and
+/// not yet charged to the clip's [`Meter`].
 #[derive(Default)]
 struct Scratch {
     stack: Vec<Work>,
     labelled: FxHashMap<u32, (DVec3, Label, bool)>,
     recent: Recent,
+    cut: u64,
 }
 
 /// The last few points labelled in unbuilt cells, anywhere: a cell seen for the first time

@@ -22,10 +22,12 @@
 
 mod build;
 mod clip;
+mod meter;
 mod surface;
 
 pub(crate) use build::{FOCUS_MARGIN, Focus};
 pub(crate) use clip::Coplanar;
+pub(crate) use meter::Meter;
 pub(crate) use surface::Surface;
 
 use crate::geom::{Aabb, Plane};

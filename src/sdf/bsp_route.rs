@@ -10,6 +10,7 @@ use super::marching_cubes::{Lattice, Refine, march};
 use super::scene::Scene;
 use super::shapes::Shape;
 use super::tree::{Frame, NodeId, NodeKind};
+use crate::bsp::Meter;
 use crate::error::{Error, Result};
 use crate::geom::{Aabb, Tolerance};
 use crate::mesh::repair::WELD_TOLERANCES;
@@ -95,13 +96,33 @@ impl Scene {
     /// [`Error::Unbounded`] for a scene with an unbounded half-space,
     /// [`Error::InvalidParameter`] for a tolerance or cell that is not finite and positive or
     /// too fine for a primitive; [`Error::BeyondPrecision`] where parts meet (or a part lies)
-    /// too far from the origin for their size (see [`Solid::check_precision`]).
+    /// too far from the origin for their size (see [`Solid::check_precision`]);
+    /// [`Error::Scene`] (at `$`) for a scene over its budget of polygons or boolean work:
+    /// before tessellating by the estimate from its primitives' segment counts, or when its
+    /// booleans are stopped at [`MAX_SCENE_WORK`] (see [`Solid::check_budget`]: faces of
+    /// different primitives that nearly coincide over a wide area).
     pub fn to_solid(&self, opts: &TessellationOptions) -> Result<Solid> {
+        self.to_solid_within(opts, MAX_SCENE_WORK)
+    }
+
+    /// [`Scene::to_solid`] with its booleans' work stopped past `work` (the cut corners of
+    /// [`Solid::check_budget`], all the scene's booleans together).
+    fn to_solid_within(&self, opts: &TessellationOptions, work: u64) -> Result<Solid> {
         let Some(ctx) = self.bsp_context(opts)? else {
             return Ok(Solid::empty());
         };
         ctx.check_budget(self.root)?;
-        let solid = ctx.solid(self.root)?;
+        let meter = Meter::new(work);
+        let solid = ctx.solid(self.root, &meter)?;
+        // The scene's own kind of budget refusal, as the estimate's: what to change in it.
+        solid.check_budget().map_err(|e| Error::Scene {
+            file: None,
+            json_path: "$".into(),
+            message: format!(
+                "{e}; or use fewer primitives or 2D shapes of fewer points, or the \
+                 marching-cubes route (--via sdf)"
+            ),
+        })?;
         solid.check_precision()?;
         Ok(solid)
     }
@@ -153,7 +174,8 @@ struct Ctx<'a> {
 }
 
 impl Ctx<'_> {
-    fn solid(&self, root: NodeId) -> Result<Solid> {
+    /// The scene's solid, its booleans' work charged to `meter`.
+    fn solid(&self, root: NodeId, meter: &Meter) -> Result<Solid> {
         enum Work {
             Visit(NodeId, Frame),
             Combine(BoolOp, usize),
@@ -165,7 +187,7 @@ impl Ctx<'_> {
             match w {
                 Work::Combine(op, n) => {
                     let children = done.split_off(done.len() - n);
-                    done.push(combine(op, children));
+                    done.push(crate::solid::boolean_all_metered(children, op, meter));
                 }
                 Work::Visit(id, parent) => {
                     let node = tree.node(id);
@@ -360,8 +382,4 @@ fn check_thickness(lb: &Aabb, world: &Solid, frame: &Frame) -> Result<()> {
         magnitude,
         eps,
     })
-}
-
-fn combine(op: BoolOp, children: Vec<Solid>) -> Solid {
-    crate::solid::boolean_all(children, op)
 }

@@ -7,8 +7,8 @@ use glam::DVec3;
 
 use super::far::{assemble, keep_far};
 use super::vertex_ids::VertexIds;
-use super::{PrecisionLoss, Solid};
-use crate::bsp::{Coplanar, FOCUS_MARGIN, Focus, Label, Surface, Tree};
+use super::{Overrun, PrecisionLoss, Solid};
+use crate::bsp::{Coplanar, FOCUS_MARGIN, Focus, Label, Meter, Surface, Tree};
 use crate::geom::{Aabb, Plane, Tolerance};
 use crate::mesh::repair::WELD_TOLERANCES;
 use crate::polygon::{Polygon, Split, attach_edge_planes_among, share_near_parallel_vertices};
@@ -46,6 +46,25 @@ impl std::fmt::Display for BoolOp {
     }
 }
 
+/// The work a boolean may do at least, whatever its operands' size: the corners of the pieces
+/// its clipping cuts (see [`Solid::check_budget`]). 2²⁴, the scene's budget too
+/// ([`crate::MAX_SCENE_WORK`]): about half a minute and 2–3 GB on a 2-core machine where faces
+/// nearly coincide (four copies of a 10,000-point wavy outline extruded, 0.016 apart, cut
+/// 21 M in 34 CPU-s and 3.1 GB; now they are stopped at 12 CPU-s). Ordinary booleans cut far
+/// less: rocker-arm ∪ moved 0.32 M, the 512 × 256 sphere ∪ moved 0.28 M.
+pub const MAX_BOOLEAN_WORK: u64 = 1 << 24;
+
+/// The work a boolean may do per polygon of its operands, where that is more than
+/// [`MAX_BOOLEAN_WORK`] (operands of over half a million polygons): ordinary booleans cut up
+/// to about 8 corners per polygon (rocker-arm ∪ moved: 0.32 M for 40 k), so large inputs
+/// stay well within it.
+pub const WORK_PER_POLYGON: u64 = 32;
+
+/// The meter of a boolean (or an n-ary reduction) over operands of `polygons` polygons in all.
+pub(crate) fn meter_for(polygons: usize) -> Meter {
+    Meter::new(MAX_BOOLEAN_WORK.max(WORK_PER_POLYGON.saturating_mul(polygons as u64)))
+}
+
 /// A name that is not a boolean operation.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("unknown boolean operation `{0}`; expected union, intersection or difference")]
@@ -73,7 +92,9 @@ impl std::str::FromStr for BoolOp {
     }
 }
 
-/// Combines two solids. Booleans of valid solids always succeed; the result may be empty.
+/// Combines two solids. Booleans of valid solids always succeed; the result may be empty. One
+/// whose operands' faces nearly coincide over a wide area may stop at its work budget instead,
+/// leaving the empty solid marked: [`Solid::check_budget`] says so.
 ///
 /// This follows csg.js's sequence — clip A by B's tree, clip B by A's tree, clip B again
 /// inverted so that faces both solids share are kept once, merge — with the inversions
@@ -90,7 +111,8 @@ impl std::str::FromStr for BoolOp {
 /// those are clipped again.
 #[must_use]
 pub fn boolean(a: &Solid, b: &Solid, op: BoolOp) -> Solid {
-    boolean_owned(a.clone(), b.clone(), op)
+    let meter = meter_for(a.polygon_count() + b.polygon_count());
+    boolean_owned(a.clone(), b.clone(), op, &meter)
 }
 
 /// [`boolean`] with a tolerance of at least `tolerance`: the boolean uses the larger of it and
@@ -117,14 +139,30 @@ pub fn boolean(a: &Solid, b: &Solid, op: BoolOp) -> Solid {
 /// ```
 #[must_use]
 pub fn boolean_with(a: &Solid, b: &Solid, op: BoolOp, tolerance: Tolerance) -> Solid {
-    boolean_at_least(a.clone(), b.clone(), op, tolerance)
+    let meter = meter_for(a.polygon_count() + b.polygon_count());
+    boolean_at_least(a.clone(), b.clone(), op, tolerance, &meter)
 }
 
-pub(super) fn boolean_owned(a: Solid, b: Solid, op: BoolOp) -> Solid {
-    boolean_at_least(a, b, op, Tolerance::new(0.0))
+/// [`boolean`] on owned operands, charging the pieces it cuts to `meter`.
+pub(super) fn boolean_owned(a: Solid, b: Solid, op: BoolOp, meter: &Meter) -> Solid {
+    boolean_at_least(a, b, op, Tolerance::new(0.0), meter)
 }
 
-fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
+/// A boolean stopped by its meter, or after an operand's was: the empty solid, marked.
+fn overran(a: &Solid, b: &Solid, meter: &Meter) -> Option<Solid> {
+    let overrun = a.overrun().or(b.overrun()).or_else(|| {
+        meter.exceeded().then(|| Overrun {
+            work: meter.used(),
+            limit: meter.limit(),
+        })
+    });
+    overrun.map(Solid::overran)
+}
+
+fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance, meter: &Meter) -> Solid {
+    if let Some(stopped) = overran(&a, &b, meter) {
+        return stopped;
+    }
     let (box_a, box_b) = (a.bbox(), b.bbox());
     let region = Tolerance::region(&box_a, &box_b);
     let needed = Tolerance::for_region(&region)
@@ -175,20 +213,33 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance) -> Solid {
         || {
             let tree_b = focused_tree(&b, &near_b, &a, &near_a, eps);
             let far = keep_far(&a, &a_ids, &near_a, &surface_b, a_keep, a_flat);
-            let near = tree_b.clip(pick(&a, &near_a), a_keep, a_rule, &surface_b);
+            let near = tree_b.clip(pick(&a, &near_a), a_keep, a_rule, &surface_b, meter);
             (far, near.into_iter().map(|c| c.polygon).collect())
         },
         || {
             let tree_a = focused_tree(&a, &near_a, &b, &near_b, eps);
             let far = keep_far(&b, &b_ids, &near_b, &surface_a, b_keep, b_flat);
-            let first = tree_a.clip(pick(&b, &near_b), b_keep, Coplanar::SameFront, &surface_a);
+            let first = tree_a.clip(
+                pick(&b, &near_b),
+                b_keep,
+                Coplanar::SameFront,
+                &surface_a,
+                meter,
+            );
             let (again, done): (Vec<_>, Vec<_>) = first.into_iter().partition(|c| c.coplanar);
             let again: Vec<Polygon> = again.into_iter().map(|c| c.polygon).collect();
-            let second = tree_a.clip(again, b_keep, Coplanar::SameBack, &surface_a);
+            let second = tree_a.clip(again, b_keep, Coplanar::SameBack, &surface_a, meter);
             let near: Vec<Polygon> = done.into_iter().chain(second).map(|c| c.polygon).collect();
             (far, near)
         },
     );
+    // Stopped: the fragments are incomplete, and none is passed on.
+    if meter.exceeded() {
+        return Solid::overran(Overrun {
+            work: meter.used(),
+            limit: meter.limit(),
+        });
+    }
     let ((a_far, mut a_near), (b_far, mut b_near)) = (a_kept, b_kept);
     // Both operands' cut points on three planes, two nearly parallel, made one point.
     share_near_parallel_vertices(&mut [&mut a_near, &mut b_near], eps);
@@ -320,5 +371,67 @@ fn disjoint(a: Solid, b: Solid, op: BoolOp, floor: f64, lost: Option<PrecisionLo
             let eps = a.carried_eps();
             Solid::with_eps(a.into_polygons(), eps, lost)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DVec2, DVec3};
+
+    use super::*;
+    use crate::error::Error;
+    use crate::sketch::{FillRule, Sketch};
+
+    /// An outline r = 1 + 0.05 sin 37a of `n` points, extruded to a unit height: copies of it a
+    /// little apart nearly coincide all along their walls.
+    fn wavy(n: u32) -> Solid {
+        let points: Vec<DVec2> = (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+                DVec2::from_angle(a) * (1.0 + 0.05 * (37.0 * a).sin())
+            })
+            .collect();
+        Sketch::polygon(&points, FillRule::EvenOdd)
+            .unwrap()
+            .extrude(1.0)
+            .unwrap()
+    }
+
+    /// A boolean whose clipping cuts more than its meter allows stops and leaves the empty
+    /// solid, marked: the mark turns into [`Error::BeyondBudget`] and passes through later
+    /// booleans (which do no work) and transforms. With room, the same boolean gives a closed
+    /// solid, and the meter has counted what it cut.
+    #[test]
+    fn a_boolean_past_its_meter_leaves_the_empty_solid_marked() {
+        let a = wavy(2_000);
+        let b = a.clone().translate(DVec3::new(0.01, 0.013, 0.0)).unwrap();
+        let limit = 100_000;
+        let tight = Meter::new(limit);
+        let stopped = boolean_owned(a.clone(), b.clone(), BoolOp::Union, &tight);
+        assert!(stopped.is_empty());
+        let Err(Error::BeyondBudget { work, limit: l }) = stopped.check_budget() else {
+            panic!("{:?}", stopped.check_budget());
+        };
+        assert_eq!(l, limit);
+        // Stopped soon after the limit: each thread charges every `CHARGE_EVERY` corners.
+        assert!(work > limit && work < 2 * limit, "{work}");
+        assert!(matches!(
+            stopped.to_checked_mesh(),
+            Err(Error::BeyondBudget { .. })
+        ));
+        let moved = stopped.clone().translate(DVec3::X).unwrap();
+        let later = &moved | &Solid::cube(1.0).unwrap();
+        assert!(later.is_empty());
+        assert_eq!(later.overrun(), stopped.overrun());
+        let roomy = Meter::new(MAX_BOOLEAN_WORK);
+        let done = boolean_owned(a, b, BoolOp::Union, &roomy);
+        assert!(done.check_budget().is_ok());
+        assert!(roomy.used() > limit && roomy.used() < MAX_BOOLEAN_WORK);
+        let mesh = done.to_checked_mesh().unwrap();
+        assert!(
+            mesh.volume() > 3.15 && mesh.volume() < 3.25,
+            "{}",
+            mesh.volume()
+        );
     }
 }

@@ -34,10 +34,12 @@ impl Solid {
     ///
     /// # Errors
     ///
-    /// [`Error::BeyondPrecision`] as [`Solid::check_precision`], and [`Error::BrokenResult`]
+    /// [`Error::BeyondBudget`] as [`Solid::check_budget`], [`Error::BeyondPrecision`] as
+    /// [`Solid::check_precision`], and [`Error::BrokenResult`]
     /// with the mesh's [`MeshReport`](crate::MeshReport) as text when the mesh is not empty
     /// and not a closed 2-manifold.
     pub fn to_checked_mesh(&self) -> Result<Mesh> {
+        self.check_budget()?;
         self.check_precision()?;
         let mesh = self.to_mesh();
         let report = mesh.report();

@@ -19,9 +19,12 @@ mod primitives;
 mod transform;
 mod vertex_ids;
 
-pub use boolean::{BoolOp, ParseBoolOpError, boolean, boolean_with};
+pub use boolean::{
+    BoolOp, MAX_BOOLEAN_WORK, ParseBoolOpError, WORK_PER_POLYGON, boolean, boolean_with,
+};
 pub use measure::{Containment, PointClassifier};
 pub use ops::boolean_all;
+pub(crate) use ops::boolean_all_metered;
 
 use std::sync::Arc;
 
@@ -46,6 +49,9 @@ pub struct Solid {
     /// The first boolean on the way to this solid that could not resolve the region its
     /// operands met in (see [`Solid::check_precision`]).
     lost: Option<PrecisionLoss>,
+    /// The boolean on the way to this solid that its work meter stopped (see
+    /// [`Solid::check_budget`]); the solid is then empty.
+    overrun: Option<Overrun>,
     /// The polygons a boolean passed through whole, with vertex ids (see [`Indexed`]): kept
     /// only while the polygons are the boolean's own, so any change to them drops it.
     index: Option<Indexed>,
@@ -65,6 +71,14 @@ pub(crate) struct PrecisionLoss {
     pub(crate) magnitude: f64,
     /// The tolerance the boolean had to use.
     pub(crate) eps: f64,
+}
+
+/// A boolean stopped by its work meter: the corners of the pieces its clipping had cut (with
+/// those of the other booleans sharing the meter) when it stopped, and the limit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Overrun {
+    pub(crate) work: u64,
+    pub(crate) limit: u64,
 }
 
 impl PrecisionLoss {
@@ -94,6 +108,7 @@ impl Solid {
             polygons,
             eps: 0.0,
             lost: None,
+            overrun: None,
             index: None,
             vertex_ids: None,
         }
@@ -119,9 +134,23 @@ impl Solid {
             polygons,
             eps,
             lost,
+            overrun: None,
             index: None,
             vertex_ids: None,
         }
+    }
+
+    /// The empty solid a boolean stopped by its work meter leaves (see [`Solid::check_budget`]).
+    pub(crate) fn overran(overrun: Overrun) -> Self {
+        Solid {
+            overrun: Some(overrun),
+            ..Solid::default()
+        }
+    }
+
+    /// The mark of a boolean stopped on the way to this solid, if any.
+    pub(crate) fn overrun(&self) -> Option<Overrun> {
+        self.overrun
     }
 
     /// The solid with what its boolean knew of its topology (see [`Indexed`]).
@@ -182,6 +211,33 @@ impl Solid {
                 region: l.region,
                 magnitude: l.magnitude,
                 eps: l.eps,
+            }),
+        }
+    }
+
+    /// Whether every boolean on the way to this solid finished within its work budget: the
+    /// corners of the pieces its clipping cut, at most [`MAX_BOOLEAN_WORK`] or
+    /// [`WORK_PER_POLYGON`] per polygon of its operands, whichever is more (for the n-ary
+    /// reductions, [`boolean_all`], all their booleans together). Ordinary booleans cut a few
+    /// corners per polygon near the other operand; faces of different operands that nearly
+    /// coincide over a wide area (copies of one detailed outline a little apart) are cut at
+    /// every plane of the other's faces they cross, and the pieces grow faster than any
+    /// estimate from the operands' size can tell.
+    ///
+    /// Booleans never fail, so one past its budget stops, leaves the empty solid, and marks it;
+    /// the mark passes to every solid made from it (the booleans after it do no work), and this
+    /// is where it turns into an error. The command line, [`Solid::to_checked_mesh`] and
+    /// [`crate::Scene::to_solid`] call it before anything is written.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::BeyondBudget`] with the work done when the boolean stopped and the limit.
+    pub fn check_budget(&self) -> Result<()> {
+        match self.overrun {
+            None => Ok(()),
+            Some(o) => Err(Error::BeyondBudget {
+                work: o.work,
+                limit: o.limit,
             }),
         }
     }

@@ -6,7 +6,8 @@ use std::ops::{BitAnd, BitAndAssign, BitOr, BitOrAssign, Sub, SubAssign};
 use rayon::prelude::*;
 
 use super::Solid;
-use super::boolean::{BoolOp, boolean, boolean_owned};
+use super::boolean::{BoolOp, boolean, boolean_owned, meter_for};
+use crate::bsp::Meter;
 
 impl Solid {
     /// Points in `self` or `other`.
@@ -28,15 +29,16 @@ impl Solid {
     }
 
     /// The union of many solids, reduced as a balanced tree (pairs in parallel), so each
-    /// boolean sees operands of similar size. Empty input gives the empty solid.
+    /// boolean sees operands of similar size. Empty input gives the empty solid. The booleans
+    /// share one work budget (see [`Solid::check_budget`]).
     pub fn union_all(solids: impl IntoIterator<Item = Solid>) -> Solid {
-        reduce_balanced(solids.into_iter().collect(), BoolOp::Union)
+        boolean_all(solids, BoolOp::Union)
     }
 
     /// The intersection of many solids, reduced as a balanced tree. Empty input gives the empty
-    /// solid.
+    /// solid. The booleans share one work budget (see [`Solid::check_budget`]).
     pub fn intersection_all(solids: impl IntoIterator<Item = Solid>) -> Solid {
-        reduce_balanced(solids.into_iter().collect(), BoolOp::Intersection)
+        boolean_all(solids, BoolOp::Intersection)
     }
 }
 
@@ -61,18 +63,28 @@ impl Solid {
 /// # Ok::<(), bspcsg::Error>(())
 /// ```
 pub fn boolean_all(solids: impl IntoIterator<Item = Solid>, op: BoolOp) -> Solid {
+    let solids: Vec<Solid> = solids.into_iter().collect();
+    let meter = meter_for(solids.iter().map(Solid::polygon_count).sum());
+    boolean_all_metered(solids, op, &meter)
+}
+
+/// [`boolean_all`] charging every boolean's cut pieces to one `meter` (a scene's: see
+/// [`Solid::check_budget`]).
+pub(crate) fn boolean_all_metered(solids: Vec<Solid>, op: BoolOp, meter: &Meter) -> Solid {
     let mut solids = solids.into_iter();
     match op {
-        BoolOp::Union => Solid::union_all(solids),
-        BoolOp::Intersection => Solid::intersection_all(solids),
+        BoolOp::Union | BoolOp::Intersection => reduce_balanced(solids.collect(), op, meter),
         BoolOp::Difference => match solids.next() {
-            Some(first) => boolean_owned(first, Solid::union_all(solids), BoolOp::Difference),
+            Some(first) => {
+                let rest = reduce_balanced(solids.collect(), BoolOp::Union, meter);
+                boolean_owned(first, rest, BoolOp::Difference, meter)
+            }
             None => Solid::empty(),
         },
     }
 }
 
-fn reduce_balanced(mut level: Vec<Solid>, op: BoolOp) -> Solid {
+fn reduce_balanced(mut level: Vec<Solid>, op: BoolOp, meter: &Meter) -> Solid {
     while level.len() > 1 {
         let mut pairs = Vec::with_capacity(level.len() / 2 + 1);
         let mut it = level.into_iter();
@@ -82,12 +94,18 @@ fn reduce_balanced(mut level: Vec<Solid>, op: BoolOp) -> Solid {
         level = pairs
             .into_par_iter()
             .map(|(a, b)| match b {
-                Some(b) => boolean_owned(a, b, op),
+                Some(b) => boolean_owned(a, b, op, meter),
                 None => a,
             })
             .collect();
     }
     level.pop().unwrap_or_default()
+}
+
+/// [`boolean`] on owned operands, with a meter of its own (the operators').
+fn owned(a: Solid, b: Solid, op: BoolOp) -> Solid {
+    let meter = meter_for(a.polygon_count() + b.polygon_count());
+    boolean_owned(a, b, op, &meter)
 }
 
 macro_rules! operator {
@@ -101,29 +119,29 @@ macro_rules! operator {
         impl $trait<Solid> for Solid {
             type Output = Solid;
             fn $method(self, rhs: Solid) -> Solid {
-                boolean_owned(self, rhs, $op)
+                owned(self, rhs, $op)
             }
         }
         impl $trait<&Solid> for Solid {
             type Output = Solid;
             fn $method(self, rhs: &Solid) -> Solid {
-                boolean_owned(self, rhs.clone(), $op)
+                owned(self, rhs.clone(), $op)
             }
         }
         impl $trait<Solid> for &Solid {
             type Output = Solid;
             fn $method(self, rhs: Solid) -> Solid {
-                boolean_owned(self.clone(), rhs, $op)
+                owned(self.clone(), rhs, $op)
             }
         }
         impl $assign<&Solid> for Solid {
             fn $assign_method(&mut self, rhs: &Solid) {
-                *self = boolean_owned(std::mem::take(self), rhs.clone(), $op);
+                *self = owned(std::mem::take(self), rhs.clone(), $op);
             }
         }
         impl $assign<Solid> for Solid {
             fn $assign_method(&mut self, rhs: Solid) {
-                *self = boolean_owned(std::mem::take(self), rhs, $op);
+                *self = owned(std::mem::take(self), rhs, $op);
             }
         }
     };

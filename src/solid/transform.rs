@@ -141,6 +141,7 @@ impl Solid {
             polygons,
             eps: self.eps * det.abs().cbrt(),
             lost: self.lost,
+            overrun: self.overrun,
             index: None,
             vertex_ids: None,
         })
@@ -160,6 +161,7 @@ impl Solid {
             polygons,
             eps: self.eps,
             lost: self.lost,
+            overrun: self.overrun,
             index: None,
             vertex_ids: None,
         }

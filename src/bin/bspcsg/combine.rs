@@ -57,6 +57,7 @@ pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Re
     progress.step("repairing (welding, closing T-junctions)");
     // Inputs let in open may give an open result; solids must give a solid (`finish` refuses
     // anything else: Solid::to_checked_mesh's promise, with the report computed once).
+    solid.check_budget()?;
     solid.check_precision()?;
     let expect = if args.allow_open {
         Expect::Any

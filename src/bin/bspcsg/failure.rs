@@ -20,13 +20,15 @@ impl Failure {
 
 impl From<Error> for Failure {
     /// The library's errors name their file already (except scene faults, which the export
-    /// command prefixes). Invalid geometry and input over a reader's budget exit 2; everything else concerns reading, parsing,
-    /// options or writing, and exits 1.
+    /// command prefixes). Invalid geometry, input over a reader's budget and booleans over
+    /// their work budget exit 2; everything else concerns reading, parsing, options or writing,
+    /// and exits 1.
     fn from(e: Error) -> Self {
         let code = match e {
             Error::InvalidMesh { .. }
             | Error::BrokenResult { .. }
             | Error::OverBudget { .. }
+            | Error::BeyondBudget { .. }
             | Error::BeyondPrecision { .. } => 2,
             _ => 1,
         };

@@ -25,7 +25,8 @@ macro_rules! exit_codes {
      (booleans without --allow-open, export), a boolean beyond the precision contract
      (parts too small for their distance from the origin), or a result the output format
      cannot hold (coordinates beyond float32); an input over the reader's budget (a glTF
-     placing more than 20 million triangles after instancing); nothing is written
+     placing more than 20 million triangles after instancing); booleans over their work
+     budget (inputs whose faces nearly coincide over a wide area); nothing is written
   3  check: the mesh disagrees with the scene (each failed measure is named with its
      value, its limit and the worst place)"
     };

@@ -18,15 +18,20 @@ pub const MAX_SCENE_POLYGONS: u64 = crate::primitives::MAX_POLYGONS;
 
 /// The most boolean work the BSP route takes on for a scene: the polygon corners of all its
 /// primitives times the levels of the balanced reduction that combines them
-/// (`⌈log₂ primitives⌉`, at least 1), each level clipping every corner once or more. 2²⁴:
-/// about a minute and 1–2 GB on a 2-core machine (twenty unions of one 10,000-point polygon
-/// extruded, 6·10⁶, take 38 s and 1 GB). Past it — 300 references to one 10,000-point polygon,
-/// 100,000 overlapping boxes, four unit spheres at a tolerance of 2.4·10⁻⁶ — the export is
-/// refused at once, saying what to change. The estimate counts corners, not how the kernel
-/// fares with them: faces of different primitives that nearly coincide (copies of one
-/// 10,000-point outline a little apart: four took over 10 minutes and 3 GB) cost far more, and
-/// are not bounded by it.
-pub const MAX_SCENE_WORK: u64 = 1 << 24;
+/// (`⌈log₂ primitives⌉`, at least 1), each level clipping every corner once or more. 2²⁴
+/// ([`crate::MAX_BOOLEAN_WORK`]): about a minute and 1–2 GB on a 2-core machine (twenty unions
+/// of one 10,000-point polygon extruded, 6·10⁶, take 38 s and 1 GB). Past it — 300 references
+/// to one 10,000-point polygon, 100,000 overlapping boxes, four unit spheres at a tolerance of
+/// 2.4·10⁻⁶ — the export is refused at once, saying what to change.
+///
+/// The estimate counts corners, not how the kernel fares with them: faces of different
+/// primitives that nearly coincide (copies of one 10,000-point outline a little apart) cost far
+/// more. So the scene's booleans also share one work meter with the same limit, counting the
+/// corners of the pieces their clipping cuts (see [`crate::Solid::check_budget`]), and stop
+/// past it: 46 such copies are refused after 8 CPU-s and 1.6 GB (they ran past 14 GB), eight
+/// after 7 CPU-s and 1.4 GB, four after 12 CPU-s and 3.1 GB (the last union stops; whole, it
+/// cuts 21 M and takes 34 CPU-s).
+pub const MAX_SCENE_WORK: u64 = crate::solid::MAX_BOOLEAN_WORK;
 
 /// What the BSP route would make of a scene at one tolerance, counted before tessellating.
 #[derive(Clone, Copy, Debug)]
