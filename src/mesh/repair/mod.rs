@@ -339,7 +339,8 @@ fn pass(
     if let Some(flat) = fill_flat {
         filled_from -= cracks::close_flat_cracks(&positions, &mut triangles, flat);
     }
-    let (mut mesh, cracks) = shells::split_into_shells(positions, triangles, &mut filled_from);
+    let (mut mesh, cracks) =
+        shells::split_into_shells(positions, triangles, &mut filled_from, delta);
     thin::drop_thin_shells(&mut mesh, delta, filled_from);
     (mesh, cracks, swept)
 }

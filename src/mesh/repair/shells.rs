@@ -27,18 +27,33 @@ use crate::mesh::Mesh;
 /// keeps its one vertex, and the half-edges between two such vertices need no twin found: only
 /// the rest are sorted by edge and paired.
 ///
-/// Also returns the end points of half-edges left without a twin: the cracks.
+/// Also returns the end points of half-edges left without a twin: the cracks. `delta` is the
+/// weld the positions were welded with (see [`FIN_SHORTEST_WELDS`]).
 pub(super) fn split_into_shells(
     positions: Vec<DVec3>,
     (mut triangles, mut sources): (Vec<[u32; 3]>, Vec<u32>),
     filled_from: &mut usize,
+    delta: f64,
 ) -> (Mesh, Vec<DVec3>) {
     let mut disc = one_disc(&triangles, positions.len());
-    if cancel_reversed_pairs(&mut triangles, &mut sources, &disc, filled_from) {
+    let fins = (&positions[..], FIN_SHORTEST_WELDS * delta);
+    if cancel_reversed_pairs(fins, &mut triangles, &mut sources, &disc, filled_from) {
         disc = one_disc(&triangles, positions.len());
     }
     split_around_discs(positions, (triangles, sources), &disc)
 }
+
+/// How many welds long a fin's every edge must be for [`cancel_reversed_pairs`] to drop it:
+/// the reach of the first wider weld the repair retries with.
+///
+/// A fin is a sliver laid flat along a crossing (its edges 10⁻⁷ … 0.6 long in the cases it
+/// closes). A triangle and its reverse with an edge shorter than that are rather one point
+/// computed several ways a little beyond the weld (where three spheres' poles meet, turned
+/// 1e-9° and 1e-3° apart: four points within 2·10⁻¹¹ against a weld of 10⁻¹¹). Dropped, the
+/// pass closed with the copies of the point apart, and the needles between them took 1.6·10⁻⁹
+/// of the volume in vertex moves; kept, the pass leaves cracks there and the wider weld makes
+/// them one point, closed with the volume right.
+const FIN_SHORTEST_WELDS: f64 = 10.0;
 
 /// Drops each triangle together with one that holds the same three vertices the other way
 /// round: a sheet with no inside, two faces a weld apart that the weld laid onto each other
@@ -49,9 +64,11 @@ pub(super) fn split_into_shells(
 /// and the vertices where the fin meets the solid split into two shells with boundary edges.
 /// Only triangles before `filled_from` (where the flat fill's, which close a crack loop by the
 /// reverse of what it bounds, start; moved down by those dropped) and at a vertex that is not a
-/// disc (a pair's own corners never are, where it meets anything else) are looked at. True if
-/// any was dropped.
+/// disc (a pair's own corners never are, where it meets anything else) are looked at, and only
+/// those whose every edge is longer than `shortest` (see [`FIN_SHORTEST_WELDS`]). True if any
+/// was dropped.
 fn cancel_reversed_pairs(
+    (positions, shortest): (&[DVec3], f64),
     triangles: &mut Vec<[u32; 3]>,
     sources: &mut Vec<u32>,
     disc: &[bool],
@@ -69,6 +86,10 @@ fn cancel_reversed_pairs(
         .take(*filled_from)
         .filter(|(_, t)| {
             t.iter().any(|&v| !disc[v as usize]) && t[0] != t[1] && t[1] != t[2] && t[0] != t[2]
+        })
+        .filter(|(_, t)| {
+            let [a, b, c] = t.map(|v| positions[v as usize]);
+            a.distance(b).min(b.distance(c)).min(c.distance(a)) > shortest
         })
         .map(|(i, &t)| (rotated(t), i as u32))
         .collect();
@@ -445,6 +466,7 @@ mod tests {
             positions.clone(),
             (triangles.clone(), sources.clone()),
             &mut filled_from,
+            1e-12,
         );
         assert!(cracks.is_empty(), "{cracks:?}");
         assert_eq!(mesh.triangles.len(), 4);
@@ -453,7 +475,38 @@ mod tests {
         assert!((mesh.volume() - 1.0 / 6.0).abs() < 1e-15);
         // The fin as the fill's: kept.
         let mut filled_from = 4;
-        let (mesh, _) = split_into_shells(positions, (triangles, sources), &mut filled_from);
+        let (mesh, _) = split_into_shells(positions, (triangles, sources), &mut filled_from, 1e-12);
         assert_eq!((mesh.triangles.len(), filled_from), (6, 4));
+    }
+
+    /// A triangle and its reverse whose corners lie within a few welds of each other (one point
+    /// computed three ways, a little beyond the weld) are kept for the wider weld to join, not
+    /// dropped as a fin; the same pair at a tenth of the weld is longer than ten welds each way
+    /// and is dropped.
+    #[test]
+    fn a_pair_within_ten_welds_is_not_a_fin() {
+        let d = 1e-11;
+        let positions = vec![
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::Y,
+            DVec3::Z,
+            DVec3::new(-2.0 * d, -3.0 * d, 0.0),
+            DVec3::new(-3.0 * d, 0.0, -2.0 * d),
+        ];
+        let tetrahedron = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        let speck = [[0, 4, 5], [5, 4, 0]];
+        let triangles: Vec<[u32; 3]> = tetrahedron.iter().chain(&speck).copied().collect();
+        let sources = vec![0; triangles.len()];
+        for (delta, kept) in [(d, 6), (0.1 * d, 4)] {
+            let mut filled_from = triangles.len();
+            let (mesh, _) = split_into_shells(
+                positions.clone(),
+                (triangles.clone(), sources.clone()),
+                &mut filled_from,
+                delta,
+            );
+            assert_eq!((mesh.triangles.len(), filled_from), (kept, kept), "{delta}");
+        }
     }
 }
