@@ -75,7 +75,7 @@ impl Scene {
         assign_sources(&self.program, &mut mesh);
         // Where the surface passes within a hair of a grid vertex, the triangles of the cells
         // around it shrink to specks: flipped or collapsed away, the mesh staying closed.
-        crate::mesh::needles::remove_needles(&mut mesh, None);
+        crate::mesh::needles::remove_needles(&mut mesh, None, None);
         Ok(mesh)
     }
 }

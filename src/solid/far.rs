@@ -20,6 +20,10 @@ pub(super) struct Far {
     vertex_count: u32,
     /// Whether the operand's polygons are discs by position (see [`VertexIds::discs`]).
     discs: bool,
+    /// Whether the operand's polygons' fans span area (see [`VertexIds::fans`]).
+    fans: bool,
+    /// The least twice area, squared, of a fan triangle (see [`VertexIds::least_fan`]).
+    least_fan: f64,
 }
 
 /// The polygons away from the other surface whose region is labelled `keep`. Polygons sharing a
@@ -119,6 +123,8 @@ pub(super) fn keep_far(
         rim: n_rim,
         vertex_count: far_count,
         discs: ids.discs(),
+        fans: ids.fans(),
+        least_fan: ids.least_fan(),
     }
 }
 
@@ -201,6 +207,9 @@ pub(super) fn assemble(
         vertex_count,
         a_vertices: offset,
         discs: [a.discs, b.discs],
+        // Flipped, B's polygons start their fans at another corner: not the ones checked.
+        fans: [a.fans, b.fans && !flip_b],
+        least_fan: [a.least_fan, if flip_b { 0.0 } else { b.least_fan }],
     });
     (polygons, index)
 }

@@ -100,7 +100,8 @@ impl Solid {
     }
 
     /// [`Solid::from_polygons`] for the polygons of a mesh, with their vertex ids (and whether
-    /// they are discs by position: see [`MeshPolygons::discs_if_apart`]).
+    /// they are discs by position: see [`MeshPolygons::discs_if_apart`]; and whether their fans
+    /// span area and how small they get: see [`vertex_ids::check_fans`]).
     pub(crate) fn from_mesh_polygons(mesh: MeshPolygons) -> Self {
         let MeshPolygons {
             polygons,
@@ -108,6 +109,7 @@ impl Solid {
         } = mesh;
         let mut ids = VertexIds::new(&polygons);
         ids.set_discs(discs_if_apart == Some(ids.vertex_count()));
+        ids.set_fans(vertex_ids::check_fans(&polygons));
         Solid {
             vertex_ids: Some(Arc::new(ids)),
             ..Solid::from_polygons(polygons)

@@ -7,7 +7,9 @@
 
 use std::sync::OnceLock;
 
+use crate::geom::is_zero_area;
 use crate::hash::{KeyedHashMap, key};
+use crate::mesh::needles::twice_area_squared;
 use crate::polygon::Polygon;
 
 /// The vertex ids of a solid's polygon corners and the polygons around each vertex.
@@ -21,6 +23,13 @@ pub(crate) struct VertexIds {
     /// Whether the polygons are discs by position (a checked mesh's: see
     /// `mesh::import::MeshPolygons::discs_if_apart`).
     discs: bool,
+    /// Whether no triangle of any polygon's fan from its first corner is of zero area (by
+    /// `geom::is_zero_area`, on these corners in this order; see [`check_fans`]).
+    fans: bool,
+    /// The least twice area, squared, of a triangle of any polygon's fan from its first corner
+    /// (as `mesh::needles::twice_area_squared` computes it; see [`check_fans`]), or 0 where
+    /// not known.
+    least_fan: f64,
     /// Made when first asked: only an operand passed on indexed needs it.
     around: OnceLock<Around>,
 }
@@ -53,6 +62,8 @@ impl VertexIds {
             start,
             vertices: id_of.len(),
             discs: false,
+            fans: false,
+            least_fan: 0.0,
             around: OnceLock::new(),
         }
     }
@@ -112,6 +123,42 @@ impl VertexIds {
     pub(crate) fn discs(&self) -> bool {
         self.discs
     }
+
+    /// Records what [`check_fans`] found of every polygon's fan.
+    pub(crate) fn set_fans(&mut self, (spans, least): (bool, f64)) {
+        self.fans = spans;
+        self.least_fan = least;
+    }
+
+    /// Whether no polygon's fan from its first corner has a triangle of zero area.
+    pub(crate) fn fans(&self) -> bool {
+        self.fans
+    }
+
+    /// The least twice area, squared, of a triangle of a polygon's fan (0 where not known).
+    pub(crate) fn least_fan(&self) -> f64 {
+        self.least_fan
+    }
+}
+
+/// Of the triangles of every polygon's fan from its first corner, `(v₀, vₖ, vₖ₊₁)`: whether
+/// none is of zero area ([`is_zero_area`] on its corners in that order), and the least twice
+/// area, squared ([`twice_area_squared`]). `to_mesh` asks both of a core polygon's fan, on the
+/// same positions bit for bit where every corner is one of the core's own vertices, and takes
+/// these answers instead (see `mesh::repair::indexed`).
+pub(crate) fn check_fans(polys: &[Polygon]) -> (bool, f64) {
+    let mut spans = true;
+    let mut least = f64::INFINITY;
+    for p in polys {
+        let vs = p.vertices();
+        for k in 1..vs.len() - 1 {
+            let t = [vs[0], vs[k], vs[k + 1]];
+            spans &= !is_zero_area(t);
+            least = least.min(twice_area_squared(t));
+        }
+    }
+    // NaN (a non-finite corner) is never at least anything.
+    (spans, if least >= 0.0 { least } else { 0.0 })
 }
 
 #[cfg(test)]
@@ -136,5 +183,24 @@ mod tests {
         assert_eq!(t.corners(1), [0, 2, 3]);
         assert_eq!(t.around(0), [0, 1, 2]);
         assert_eq!(t.around(3), [1, 2, 3]);
+    }
+
+    /// A square of side 2 fans from its first corner into two right triangles of twice area 4:
+    /// the least, squared, is 16. With a corner on an edge next to the first, a fan triangle
+    /// has no area.
+    #[test]
+    fn fans_are_checked_from_the_first_corner() {
+        let (o, x, y) = (DVec3::ZERO, 2.0 * DVec3::X, 2.0 * DVec3::Y);
+        let square = Polygon::new(&[o, x, x + y, y], 0).unwrap();
+        assert_eq!(check_fans(std::slice::from_ref(&square)), (true, 16.0));
+        let beside = Polygon::new(&[o, x, x + y, y, 0.5 * y], 0).unwrap();
+        let (spans, least) = check_fans(&[square, beside]);
+        assert!(!spans);
+        assert_eq!(least, 0.0);
+        // Read from a mesh, a solid keeps what its polygons' fans are.
+        let cube = crate::Solid::from_mesh(&crate::Solid::cube(2.0).unwrap().to_mesh()).unwrap();
+        let ids = cube.into_parts().1.unwrap();
+        assert!(ids.fans());
+        assert_eq!(ids.least_fan(), 16.0);
     }
 }

@@ -71,7 +71,14 @@ const SPECK_MOVE: f64 = 2.0 * MAX_MOVE;
 /// `scale`, where given, caps the diagonal the thresholds are taken from: a boolean passes 16
 /// times the size of the region where its operands met, so a part joined to a box 10³⁸ across
 /// keeps its triangles (by the box's diagonal, every one of them would be a needle).
-pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
+///
+/// `known`, where given, names triangles whose twice area, squared, is known to be at least
+/// some bound (see [`KnownAreas`]): where that bound is above the first check's, it skips them.
+pub(crate) fn remove_needles(
+    mesh: &mut Mesh,
+    scale: Option<f64>,
+    known: Option<&KnownAreas>,
+) -> usize {
     let n = mesh.positions.len();
     // Positions are checked once each where all are finite (every one is used, as `to_mesh`
     // leaves them), not once per corner.
@@ -97,11 +104,28 @@ pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
     // never skips a triangle the exact test below takes.
     let bar = (2.0 * largest_threshold).powi(2) * (1.0 + 1e-9);
     let corners = |t: &[u32; 3]| t.map(|i| mesh.positions[i as usize]);
-    if !mesh
-        .triangles
-        .iter()
-        .any(|t| twice_normal(corners(t)).length_squared() < bar)
-    {
+    let small = |t: &[u32; 3]| twice_area_squared(corners(t)) < bar;
+    // Every `to_mesh` of the unit tests checks what it was told.
+    #[cfg(test)]
+    for &(start, past) in known.map_or(&[][..], |k| &k.ranges) {
+        for t in &mesh.triangles[start as usize..past as usize] {
+            assert!(twice_area_squared(corners(t)) >= known.unwrap().least);
+        }
+    }
+    let any_small = match known.filter(|k| k.least >= bar) {
+        // Only the triangles between the known ranges need the check.
+        Some(k) => {
+            let end = mesh.triangles.len() as u32;
+            let mut from = 0;
+            k.ranges.iter().chain([&(end, end)]).any(|&(start, past)| {
+                let between = &mesh.triangles[from as usize..start as usize];
+                from = past;
+                between.iter().any(small)
+            })
+        }
+        None => mesh.triangles.iter().any(small),
+    };
+    if !any_small {
         return 0;
     }
     let mut work = Work::new(std::mem::take(mesh), scale);
@@ -148,6 +172,21 @@ pub(crate) fn remove_needles(mesh: &mut Mesh, scale: Option<f64>) -> usize {
         }
     }
     work.finish(mesh)
+}
+
+/// Triangles of a mesh whose twice area, squared ([`twice_area_squared`]), is at least `least`:
+/// those in the ranges `start..past` of triangle indices, ascending and apart. (`to_mesh`'s core
+/// fans, whose corners are where they were when the solid was made and checked.)
+#[derive(Debug, Default)]
+pub(crate) struct KnownAreas {
+    pub ranges: Vec<(u32, u32)>,
+    pub least: f64,
+}
+
+/// A triangle's twice area, squared, as [`remove_needles`] first checks it: the cross product
+/// of the edges from its first corner.
+pub(crate) fn twice_area_squared(c: [DVec3; 3]) -> f64 {
+    twice_normal(c).length_squared()
 }
 
 /// A planned change: how far it moves the surface, the volume it sweeps, what it does.

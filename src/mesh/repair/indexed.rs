@@ -8,6 +8,7 @@ use super::discs::one_disc;
 use super::{regions, rings_of, shells, tjunction};
 use crate::geom::is_zero_area;
 use crate::mesh::Mesh;
+use crate::mesh::needles::KnownAreas;
 use crate::mesh::weld::{Wide, weld_within};
 use crate::polygon::Polygon;
 
@@ -36,16 +37,28 @@ pub(crate) struct Indexed {
     /// `mesh::import::MeshPolygons::discs_if_apart`), so that the core's own vertices need no
     /// link walk (see [`discs_around_core`]).
     pub discs: [bool; 2],
+    /// Per operand, whether no triangle of its core polygons' fans (from the first corner, as
+    /// here) is of zero area, as checked where the solid was made (see
+    /// `solid::vertex_ids::fans_span_area`): a fan whose corners are all own vertices of the
+    /// core is then not tested again.
+    pub fans: [bool; 2],
+    /// Per operand, the least twice area, squared, of a triangle of its polygons' fans, as
+    /// found where the solid was made (0 where not known: see
+    /// `solid::vertex_ids::check_fans`), for the needle pass to skip the core's fans.
+    pub least_fan: [f64; 2],
 }
 
 /// One repair pass over the rim and the cut polygons at weld tolerance `delta`, with the core's
 /// fans added before the shells are split. `None` where a core fan degenerates (a seam vertex
 /// welded onto another corner of it, or a fan triangle of zero area): the full pass decides.
+/// Also returns the fans of core polygons whose every corner is an own vertex, by their places
+/// in the mesh, with the least twice area, squared, their operands' fans were found to have
+/// (see [`Indexed::least_fan`]): the shells are split without moving a triangle.
 pub(super) fn repair(
     polygons: &[Polygon],
     index: &Indexed,
     delta: f64,
-) -> Option<(Mesh, Vec<DVec3>)> {
+) -> Option<(Mesh, Vec<DVec3>, KnownAreas)> {
     let rest = &polygons[index.core..];
     let mut corners: Vec<DVec3> = Vec::with_capacity(rest.iter().map(|p| p.vertices().len()).sum());
     // Where each polygon's corners start in `corners`, counted from the core's end.
@@ -125,6 +138,10 @@ pub(super) fn repair(
     if by_position {
         walked.extend_from_slice(&triangles);
     }
+    let mut known = KnownAreas {
+        ranges: Vec::new(),
+        least: f64::INFINITY,
+    };
     let mut at = 0usize;
     triangles.reserve(core_corners);
     sources.reserve(core_corners);
@@ -134,6 +151,7 @@ pub(super) fn repair(
         at += vs.len();
         let v = |k: usize| vertex_of[ids[k] as usize];
         let mut walk = false;
+        let mut own = true;
         for (k, &x) in vs.iter().enumerate() {
             let i = v(k) as usize;
             if i >= welded {
@@ -141,14 +159,31 @@ pub(super) fn repair(
                 walk |= by_position && !own_discs[i - welded];
             } else {
                 walk = true;
+                own = false;
             }
+        }
+        // Every corner an own vertex: its position is this polygon's corner, bit for bit (equal
+        // ids are equal positions, but for the sign of a zero, which no magnitude the test
+        // computes depends on), so the fan is the one checked when the solid was made.
+        let operand = usize::from(ids[0] >= index.a_vertices);
+        let checked = own && index.fans[operand];
+        if own && index.least_fan[operand] > 0.0 {
+            let at = triangles.len() as u32;
+            let past = at + vs.len() as u32 - 2;
+            match known.ranges.last_mut() {
+                Some(last) if last.1 == at => last.1 = past,
+                _ => known.ranges.push((at, past)),
+            }
+            known.least = known.least.min(index.least_fan[operand]);
         }
         for k in 1..vs.len() - 1 {
             let t = [v(0), v(k), v(k + 1)];
             if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
                 return None;
             }
-            if is_zero_area(t.map(|i| positions[i as usize])) {
+            #[cfg(test)]
+            assert!(!checked || !is_zero_area(t.map(|i| positions[i as usize])));
+            if !checked && is_zero_area(t.map(|i| positions[i as usize])) {
                 return None;
             }
             triangles.push(t);
@@ -169,11 +204,8 @@ pub(super) fn repair(
     // Every indexed boolean of the unit tests checks the skip against the walk of every link.
     #[cfg(test)]
     assert_eq!(disc, one_disc(&triangles, positions.len()));
-    Some(shells::split_around_discs(
-        positions,
-        (triangles, sources),
-        &disc,
-    ))
+    let (mesh, cracks) = shells::split_around_discs(positions, (triangles, sources), &disc);
+    Some((mesh, cracks, known))
 }
 
 /// Which vertices are discs ([`one_disc`]) in the mesh of the rim's and the cut polygons'

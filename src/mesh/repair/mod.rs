@@ -119,14 +119,15 @@ fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (M
     let scale = Some(NEEDLE_REGION_REACH * eps / Tolerance::RELATIVE);
     let mut passes = u32::from(index.is_some());
     match index.and_then(|i| indexed::repair(polygons, i, delta)) {
-        Some((mut mesh, cracks)) if cracks.is_empty() => {
-            thin::drop_thin_shells(&mut mesh, delta, usize::MAX);
-            super::needles::remove_needles(&mut mesh, scale);
+        Some((mut mesh, cracks, known)) if cracks.is_empty() => {
+            // The known triangles keep their places unless a shell is dropped.
+            let dropped = thin::drop_thin_shells(&mut mesh, delta, usize::MAX);
+            super::needles::remove_needles(&mut mesh, scale, (dropped == 0).then_some(&known));
             return (mesh, passes);
         }
         // Open, and so refused by every caller that needs a solid: removing its needles (a
         // sixth of the time at 256×128) would not change that.
-        Some((mesh, cracks)) if cracks.len() > WIDEN_CRACKS => return (mesh, passes),
+        Some((mesh, cracks, _)) if cracks.len() > WIDEN_CRACKS => return (mesh, passes),
         _ => {}
     }
     let mut wide = Wide::default();
@@ -138,7 +139,7 @@ fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (M
         passes += 1;
     }
     if cracks.is_empty() {
-        super::needles::remove_needles(&mut mesh, scale);
+        super::needles::remove_needles(&mut mesh, scale, None);
         return (mesh, passes);
     }
     if cracks.len() > WIDEN_CRACKS {
@@ -193,14 +194,14 @@ fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (M
         best.consider(mesh, left.len(), 0.0);
     }
     let mut mesh = best.mesh;
-    super::needles::remove_needles(&mut mesh, scale);
+    super::needles::remove_needles(&mut mesh, scale, None);
     (mesh, passes)
 }
 
 /// Whether the indexed pass alone closes the mesh (no fallback to the full passes).
 #[cfg(test)]
 pub(crate) fn indexed_pass_closes(polygons: &[Polygon], eps: f64, index: &Indexed) -> bool {
-    indexed::repair(polygons, index, WELD_TOLERANCES * eps).is_some_and(|(_, c)| c.is_empty())
+    indexed::repair(polygons, index, WELD_TOLERANCES * eps).is_some_and(|(_, c, _)| c.is_empty())
 }
 
 /// How many first welds (`delta`) times the polygons' area a pass after the first may sweep
