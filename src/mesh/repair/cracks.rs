@@ -12,7 +12,8 @@
 //! less itself turned 1e-7° about a skew axis: one cube's corner lies on the other's face, its
 //! motion being along that face), one sheet of a thin wedge holds a triangle 10⁻¹⁰ across that
 //! the sheet against it lacks. Its rim is the loop; filling it would lay the reverse triangle
-//! on it, a sheet of no thickness, so the flap is taken away instead.
+//! on it, a sheet of no thickness, so the flap is taken away instead — a flap of several
+//! triangles too, however the fill would have drawn its diagonals.
 
 use glam::DVec3;
 
@@ -53,6 +54,28 @@ pub(super) fn close_flat_cracks(
         }
     }
     let mut used = vec![false; ends.len()];
+    // The triangles at each vertex (from `fan[v]` to `fan[v + 1]` in `list`), for the flaps
+    // of several triangles.
+    let (mut fan, mut list) = (Vec::new(), Vec::new());
+    if !ends.is_empty() {
+        fan = vec![0u32; positions.len() + 1];
+        for tri in triangles.iter() {
+            for &v in tri {
+                fan[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..positions.len() {
+            fan[v + 1] += fan[v];
+        }
+        let mut next = fan.clone();
+        list = vec![0u32; 3 * triangles.len()];
+        for (t, tri) in triangles.iter().enumerate() {
+            for &v in tri {
+                list[next[v as usize] as usize] = t as u32;
+                next[v as usize] += 1;
+            }
+        }
+    }
     for start in 0..ends.len() {
         if used[start] {
             continue;
@@ -73,6 +96,12 @@ pub(super) fn close_flat_cracks(
         let tris = triangulate_boundary(positions, normal, &fill)
             .unwrap_or_else(|| ear_clip_boundary(positions, normal, &fill));
         if tris.len() + 2 != fill.len() {
+            continue;
+        }
+        // A flap of several triangles whose diagonals the fill would not draw the same way:
+        // taken away whole.
+        if let Some(patch) = flap_patch(&uses, triangles, (&fan, &list), &edges) {
+            cancelled.extend(patch);
             continue;
         }
         let source = sources[owner[&edges[0]] as usize];
@@ -132,6 +161,66 @@ fn flap(
         .find(|&t| turns(triangles[t as usize]))
 }
 
+/// The triangles already there that make up a flap with `rim` (a loop of unpaired half-edges)
+/// as their whole boundary, if any: two or more triangles (one is [`flap`]'s) with no corner
+/// off the rim, held by the surface by an edge (one used by three triangles or more: else they
+/// are a lone face, see [`flap`]). Filled, such a flap would get the fill's
+/// reverse laid on it, and where the fill draws its diagonals otherwise than the flap does, no
+/// fill triangle is a flap triangle's reverse: the two made a closed shell of no volume, kept
+/// as the fill's (see [`super::thin`]). A flap of two slivers 10⁻⁹ wide, where a cube turned
+/// 1e-6° and a box meet on their crossing line, was so left.
+fn flap_patch(
+    uses: &FxHashMap<(u32, u32), i32>,
+    triangles: &[[u32; 3]],
+    around: (&[u32], &[u32]),
+    rim: &[(u32, u32)],
+) -> Option<Vec<u32>> {
+    let n = rim.len();
+    if n < 4 {
+        return None;
+    }
+    let (start, list) = around;
+    let at = |v: u32| &list[start[v as usize] as usize..start[v as usize + 1] as usize];
+    let corners: Vec<u32> = rim.iter().map(|&(a, _)| a).collect();
+    let mut patch: Vec<u32> = Vec::new();
+    for &v in &corners {
+        for &t in at(v) {
+            if !patch.contains(&t) && triangles[t as usize].iter().all(|c| corners.contains(c)) {
+                patch.push(t);
+            }
+        }
+    }
+    if patch.len() != n - 2 {
+        return None;
+    }
+    let mut boundary: Vec<(u32, u32)> = Vec::with_capacity(n);
+    for &t in &patch {
+        let tri = triangles[t as usize];
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            if let Some(i) = boundary.iter().position(|&e| e == (b, a)) {
+                boundary.swap_remove(i);
+            } else {
+                boundary.push((a, b));
+            }
+        }
+    }
+    boundary.sort_unstable();
+    let mut loop_edges = rim.to_vec();
+    loop_edges.sort_unstable();
+    if boundary != loop_edges {
+        return None;
+    }
+    let held = |a: u32, b: u32| {
+        uses.get(&(a, b)).copied().unwrap_or(0) + uses.get(&(b, a)).copied().unwrap_or(0)
+    };
+    let crowded = patch.iter().any(|&t| {
+        let tri = triangles[t as usize];
+        (0..3).any(|k| held(tri[k], tri[(k + 1) % 3]) >= 3)
+    });
+    crowded.then_some(patch)
+}
+
 /// Follows unpaired half-edges from `start` until they come back to its first vertex; `None`
 /// (and the edges left free) when the walk ends elsewhere.
 fn trace(
@@ -160,4 +249,33 @@ fn trace(
         at = ends[e as usize].1;
     }
     Some(path.iter().map(|&e| ends[e as usize]).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::close_flat_cracks;
+
+    /// A flap of two slivers hung on a tetrahedron's edge 0–1, whose rim the fill would close by
+    /// the other diagonal (4–5, the short one): no fill triangle is the reverse of a flap's, and
+    /// the fill laid on the flap made a closed shell of no volume. The flap is taken away whole
+    /// instead, the tetrahedron left as it was.
+    #[test]
+    fn a_flap_of_two_triangles_is_taken_away() {
+        let positions = vec![
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::Y,
+            DVec3::Z,
+            DVec3::new(0.5, 1e-3, 0.0),
+            DVec3::new(0.5, -1e-3, 0.0),
+        ];
+        let tetrahedron = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        let flap = [[0, 4, 1], [1, 5, 0]];
+        let triangles: Vec<[u32; 3]> = tetrahedron.iter().chain(&flap).copied().collect();
+        let mut mesh = (triangles, vec![0; 6]);
+        assert_eq!(close_flat_cracks(&positions, &mut mesh, 1e-12), 2);
+        assert_eq!(mesh.0, tetrahedron.to_vec());
+    }
 }
