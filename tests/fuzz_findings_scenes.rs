@@ -487,3 +487,39 @@ fn scene_bsp_route_of_two_smooth_unions_sharing_a_sphere_differenced() {
         report.volume
     );
 }
+
+/// Found by round 19's 10-minute `scenes` run (seed 1901; `bsp_13`): two I-beams whose
+/// profile has a corner 7·10⁶ out, so each is a sliver 10⁷ long, a unit across, whose whole
+/// profile is needles by the shell's diagonal (needle area 1e-12 d² ≈ 320). The boolean's
+/// polygons were right (volume 15,276,840.7) and the weld closed them, but the needle pass
+/// moved corners of the profile by up to 36 (within its bound, 2·10⁻⁶ d) on triangles 10⁷
+/// long, each move sweeping up to 5·10⁷: the mesh came out inside out (volume −8.7·10⁶, the
+/// command line refusing it), and the same union of the two beams' meshes closed with volume
+/// 7.4·10⁷, written with exit 0. The needle pass now leaves the mesh as it was where it would
+/// change the volume.
+#[test]
+fn scene_bsp_route_of_two_beams_ten_million_long_keeps_its_volume() {
+    let (scene, _, solid) = coarse_route("bsp_13");
+    let default = scene
+        .to_solid(&bspcsg::TessellationOptions::default())
+        .unwrap();
+    for (what, solid) in [("coarse", solid), ("default", default)] {
+        let mesh = solid.to_mesh();
+        let report = mesh.report();
+        assert!(report.is_closed_manifold(), "bsp_13 {what}: {report}");
+        assert!(
+            (report.volume - solid.volume()).abs() < 1e-8 * solid.volume(),
+            "bsp_13 {what}: mesh volume {} but the solid's {}",
+            report.volume,
+            solid.volume()
+        );
+        let (inside, reach) = (solid.bbox(), 1e-9 * solid.bbox().diagonal());
+        let bbox = mesh.bbox();
+        assert!(
+            inside.contains_point(bbox.min, reach) && inside.contains_point(bbox.max, reach),
+            "bsp_13 {what}: the mesh reaches {:?} beyond the solid's {:?}",
+            mesh.bbox(),
+            solid.bbox()
+        );
+    }
+}

@@ -50,8 +50,8 @@ mod work;
 use glam::DVec3;
 
 use super::Mesh;
-use crate::geom::{Aabb, MAX_MOVE, NEEDLE_AREA};
-use geometry::twice_normal;
+use crate::geom::{Aabb, MAX_MOVE, NEEDLE_AREA, Tolerance};
+use geometry::{area, twice_normal};
 use work::Work;
 
 /// The farthest, as a fraction of the shell's diagonal `d`, that removing one needle may move
@@ -140,6 +140,17 @@ pub(crate) fn remove_needles(
         };
         return 0;
     }
+    let found = queue.len();
+    let original = Mesh {
+        positions: work.positions.clone(),
+        triangles: work.tris.clone(),
+        sources: work.sources.clone(),
+    };
+    // The volume the operations change, measured on the triangles around each needle's corners
+    // (every operation on a needle changes only those), and the area of those triangles.
+    let reference = bbox.center();
+    let mut change = 0.0;
+    let (mut seen, mut seen_area) = (vec![false; work.tris.len()], 0.0);
     // Each operation removes a needle or makes one's smallest area larger; the budget only
     // guards against cycling between equally bad choices.
     let mut budget = 16 * queue.len() + 64;
@@ -151,7 +162,19 @@ pub(crate) fn remove_needles(
         if !work.alive[t as usize] || !work.is_needle(t) {
             continue;
         }
-        if let Some(touched) = work.fix(t) {
+        let star = work.star(work.tris[t as usize]);
+        let before = work.star_volume(&star, reference);
+        for &u in &star {
+            if !std::mem::replace(&mut seen[u as usize], true) {
+                seen_area += area(work.corners(work.tris[u as usize]));
+            }
+        }
+        let fixed = work.fix(t);
+        if fixed.is_none() {
+            work.drop_tetrahedron(t);
+        }
+        change += work.star_volume(&star, reference) - before;
+        if let Some(touched) = fixed {
             // An operation changes the neighbours of every corner of the triangles it touched,
             // so the link condition of needles with a corner there: those are tried again. A
             // spike whose short edge's ends shared a third neighbour through a vertex of
@@ -167,12 +190,38 @@ pub(crate) fn remove_needles(
                 }
             }
             queue.extend(again);
-        } else {
-            work.drop_tetrahedron(t);
         }
     }
-    work.finish(mesh)
+    let left = work.finish(mesh);
+    // Each operation bounds how far it moves the surface, by the shell's diagonal, not the
+    // volume it sweeps: where the triangles are far longer than the move (a sliver 10⁷ long
+    // whose whole profile, a unit across, is needles by that diagonal), moves within the bound
+    // swept up to a third of the solid each and folded it inside out. Beyond
+    // [`NEEDLE_VOLUME_CHANGE`] the needles are left, not the shape changed.
+    let tolerance = Tolerance::RELATIVE * bbox.diagonal().min(scale);
+    // Within what the touched triangles' area explains, the whole mesh need not be measured.
+    if change.abs() > NEEDLE_SWEPT_TOLERANCES * tolerance * seen_area
+        && change.abs()
+            > NEEDLE_VOLUME_CHANGE * original.volume().abs()
+                + NEEDLE_SWEPT_TOLERANCES * tolerance * original.area()
+    {
+        *mesh = original;
+        return found;
+    }
+    left
 }
+
+/// The most the needle pass may change the mesh's volume: [`NEEDLE_VOLUME_CHANGE`] of it, plus
+/// [`NEEDLE_SWEPT_TOLERANCES`] plane tolerances (at the pass's scale) times its area.
+/// Collapses and merges keep the volume, but stretching the tip of a wedge changes it: by
+/// 1.9·10⁻⁴ of a sliver of boxes (7.9·10⁻¹⁰), 2.7·10⁻³ of sphere − itself turned 10⁻⁶° (a
+/// crescent of 1.8·10⁻⁹), 0.15 of cube − itself turned 3·10⁻⁹° (wedges of 4.1·10⁻¹¹, a change
+/// of 1.2 tolerances times the area). The beams' folding moves changed it by 1.6 times.
+const NEEDLE_VOLUME_CHANGE: f64 = 1e-2;
+
+/// See [`NEEDLE_VOLUME_CHANGE`]: a wider weld may sweep as much (`repair::SWEPT_WELDS` times
+/// the first weld's reach of 8 tolerances).
+const NEEDLE_SWEPT_TOLERANCES: f64 = 32.0;
 
 /// Triangles of a mesh whose twice area, squared ([`twice_area_squared`]), is at least `least`:
 /// those in the ranges `start..past` of triangle indices, ascending and apart. (`to_mesh`'s core

@@ -116,6 +116,15 @@ impl Work {
         star
     }
 
+    /// The signed volume the live triangles of `star` span with `reference`.
+    pub(super) fn star_volume(&self, star: &[u32], reference: DVec3) -> f64 {
+        let spans = star.iter().filter(|&&u| self.alive[u as usize]).map(|&u| {
+            let [a, b, c] = self.corners(self.tris[u as usize]).map(|p| p - reference);
+            a.dot(b.cross(c))
+        });
+        spans.sum::<f64>() / 6.0
+    }
+
     pub(super) fn threshold(&self, tri: [u32; 3]) -> f64 {
         self.needle_area[self.shell[tri[0] as usize] as usize]
     }

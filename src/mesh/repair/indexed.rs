@@ -39,7 +39,7 @@ pub(crate) struct Indexed {
     pub discs: [bool; 2],
     /// Per operand, whether no triangle of its core polygons' fans (from the first corner, as
     /// here) is of zero area, as checked where the solid was made (see
-    /// `solid::vertex_ids::fans_span_area`): a fan whose corners are all own vertices of the
+    /// `solid::vertex_ids::check_fans`): a fan whose corners are all own vertices of the
     /// core is then not tested again.
     pub fans: [bool; 2],
     /// Per operand, the least twice area, squared, of a triangle of its polygons' fans, as
