@@ -149,26 +149,8 @@ fn a_bake_over_the_outline_budget_is_refused_with_a_cell_that_fits() {
 #[test]
 fn scene_exports_over_the_work_budget_are_refused_before_any_work() {
     let dir = Scratch::new("work-budget");
-    let points = wavy_polygon(10_000);
-    let refs: Vec<String> = (0..300)
-        .map(|i| {
-            format!(
-                r#"{{"op":"extrude","source_2d_sdf":"p","extrude_depth":1,"pos":[{},{},0]}}"#,
-                0.01 * f64::from(i),
-                0.013 * f64::from(i)
-            )
-        })
-        .collect();
     let scene = dir.path("refs.json");
-    fs::write(
-        &scene,
-        format!(
-            r#"{{"kind":"sdf_scene","version":1,"sdf_2d":{{"p":{{"type":"polygon","points":[{}]}}}},"tree":{{"op":"union","children":[{}]}}}}"#,
-            points.join(","),
-            refs.join(",")
-        ),
-    )
-    .unwrap();
+    fs::write(&scene, wavy_copies(300)).unwrap();
     let out = dir.path("refs.obj");
     let run = export_refused_at_once(
         &[scene.as_os_str()],

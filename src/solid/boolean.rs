@@ -148,20 +148,23 @@ pub(super) fn boolean_owned(a: Solid, b: Solid, op: BoolOp, meter: &Meter) -> So
     boolean_at_least(a, b, op, Tolerance::new(0.0), meter)
 }
 
+/// The mark of a boolean whose `meter` is past its limit.
+fn stopped(meter: &Meter) -> Option<Overrun> {
+    meter.exceeded().then(|| Overrun {
+        work: meter.used(),
+        limit: meter.limit(),
+    })
+}
+
 /// A boolean stopped by its meter, or after an operand's was: the empty solid, marked.
 fn overran(a: &Solid, b: &Solid, meter: &Meter) -> Option<Solid> {
-    let overrun = a.overrun().or(b.overrun()).or_else(|| {
-        meter.exceeded().then(|| Overrun {
-            work: meter.used(),
-            limit: meter.limit(),
-        })
-    });
+    let overrun = a.overrun().or(b.overrun()).or_else(|| stopped(meter));
     overrun.map(Solid::overran)
 }
 
 fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance, meter: &Meter) -> Solid {
-    if let Some(stopped) = overran(&a, &b, meter) {
-        return stopped;
+    if let Some(marked) = overran(&a, &b, meter) {
+        return marked;
     }
     let (box_a, box_b) = (a.bbox(), b.bbox());
     let region = Tolerance::region(&box_a, &box_b);
@@ -234,11 +237,8 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance, meter: &Me
         },
     );
     // Stopped: the fragments are incomplete, and none is passed on.
-    if meter.exceeded() {
-        return Solid::overran(Overrun {
-            work: meter.used(),
-            limit: meter.limit(),
-        });
+    if let Some(overrun) = stopped(meter) {
+        return Solid::overran(overrun);
     }
     let ((a_far, mut a_near), (b_far, mut b_near)) = (a_kept, b_kept);
     // Both operands' cut points on three planes, two nearly parallel, made one point.

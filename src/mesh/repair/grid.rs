@@ -261,18 +261,22 @@ mod tests {
             .unwrap()
     }
 
+    /// Numbers in [0, 1) from a linear congruential generator seeded with `seed`.
+    fn unit_numbers(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
     /// Points on one plane of constant `z` (an extrusion's caps) build a sparse grid as fast
     /// as points spread in `z`: with an unkeyed multiply hash their cell keys shared one
     /// bucket, and building the grid of 60,000 took 1.6 s against 1.1 ms.
     #[test]
     fn a_sparse_grid_of_points_on_one_plane_builds_as_fast_as_a_spread_one() {
-        let mut s = 99u64;
-        let mut next = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = unit_numbers(99);
         let n = 60_000;
         let flat: Vec<DVec3> = (0..n)
             .map(|_| DVec3::new(next(), next(), 0.0) * 100.0)
@@ -293,13 +297,7 @@ mod tests {
     #[test]
     fn hands_over_every_point_near_a_segment() {
         let mut spots = Vec::new();
-        let mut s = 12345u64;
-        let mut next = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = unit_numbers(12345);
         for _ in 0..2000 {
             spots.push(DVec3::new(next(), next(), next()) * 10.0);
         }
