@@ -4,7 +4,9 @@
 //! Two hashers, for two kinds of key:
 //! - [`FxHasher`] (FxHash's multiply-rotate), unkeyed and fastest, for keys the crate makes
 //!   itself: vertex and polygon indices, grid cells of its own lattices.
-//! - [`KeyedHasher`], for keys that come from input files: positions (and cells of positions).
+//! - [`KeyedHasher`], for keys that come from input files: positions (and cells of positions),
+//!   and pairs of vertex indices whose pairing a file chooses (the directed edges of its
+//!   triangles).
 //!   A fixed, unkeyed hash lets a file be crafted whose positions all land in one bucket, which
 //!   makes welding quadratic (a 1M-vertex OBJ took 300 s instead of 1.6 s). Keyed per process
 //!   with random keys, a collision found for one run says nothing about the next.
@@ -71,6 +73,10 @@ impl std::hash::Hasher for KeyedHasher {
     #[inline]
     fn write_u64(&mut self, x: u64) {
         self.state = folded_multiply(self.state ^ x ^ self.keys[1], self.keys[0]);
+    }
+    #[inline]
+    fn write_u32(&mut self, x: u32) {
+        self.write_u64(u64::from(x));
     }
     #[inline]
     fn write_usize(&mut self, x: usize) {

@@ -4,7 +4,7 @@
 use super::Mesh;
 use crate::error::{Error, MeshDefect, Result};
 use crate::geom::is_zero_area;
-use crate::hash::{FxBuild, FxHashMap};
+use crate::hash::{KeyedBuild, KeyedHashMap};
 use crate::mesh::repair::Links;
 use crate::polygon::{Polygon, Vertices};
 use crate::topology::{check_closed, check_face_indices, check_finite};
@@ -265,6 +265,10 @@ fn merge_coplanar(
 const MANY: usize = usize::MAX;
 const UNSET: u32 = u32::MAX;
 
+/// Directed edge -> owner. Keyed (see `crate::hash`): the file chooses which vertex indices
+/// pair up, so an unkeyed hash of the pairs could be flooded.
+type EdgeOwners = KeyedHashMap<(u32, u32), usize>;
+
 /// The state of [`merge_coplanar`]: edge ownership, which triangles are taken, and the ring
 /// being grown as a linked list over vertex indices.
 struct Merger<'a> {
@@ -274,7 +278,7 @@ struct Merger<'a> {
     /// How far off the seed's plane a new corner may lie.
     tol: f64,
     /// Directed edge -> the one triangle that runs along it, or [`MANY`].
-    owner: FxHashMap<(u32, u32), usize>,
+    owner: EdgeOwners,
     done: Vec<bool>,
     next: Vec<u32>,
     prev: Vec<u32>,
@@ -299,8 +303,7 @@ impl<'a> Merger<'a> {
         let (tris, pos) = (&mesh.triangles, &mesh.positions);
         let bbox = mesh.bbox();
         let tol = (1e-12 * bbox.diagonal()).max(64.0 * f64::EPSILON * bbox.max_abs());
-        let mut owner: FxHashMap<(u32, u32), usize> =
-            FxHashMap::with_capacity_and_hasher(3 * tris.len(), FxBuild::default());
+        let mut owner = EdgeOwners::with_capacity_and_hasher(3 * tris.len(), KeyedBuild::default());
         for (t, tri) in tris
             .iter()
             .enumerate()
@@ -513,5 +516,58 @@ mod tests {
         let report = kept.report();
         assert!(report.is_closed_manifold(), "{report}");
         assert_eq!(kept.triangles.len(), 8);
+    }
+
+    /// Issue 12 item 8 (edge ownership in merging an operand's coplanar triangles): a file
+    /// chooses which vertex indices pair up as edges, so pairs crafted to share one bucket
+    /// under the unkeyed hash spread under the map's own hasher like random pairs.
+    #[test]
+    fn crafted_edges_spread_in_the_edge_owner_map_like_random_ones() {
+        use std::hash::BuildHasher;
+        const N: usize = 1024;
+        let buckets = (3 * N * 8 / 7).next_power_of_two();
+        let mask = (buckets - 1) as u64;
+        let fx = crate::hash::FxBuild::default();
+        let crafted: Vec<(u32, u32)> = (0u32..)
+            .map(|b| (1, b))
+            .filter(|e| fx.hash_one(e) & mask == 0)
+            .take(N)
+            .collect();
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let random: Vec<(u32, u32)> = (0..N)
+            .map(|_| {
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                (1, (state >> 40) as u32)
+            })
+            .collect();
+        let collisions = |edges: &[(u32, u32)], hash: &dyn Fn(&(u32, u32)) -> u64| {
+            let mut count = vec![0u64; buckets];
+            for e in edges {
+                count[(hash(e) & mask) as usize] += 1;
+            }
+            count
+                .iter()
+                .map(|&c| c * c.saturating_sub(1) / 2)
+                .sum::<u64>()
+        };
+        let owners =
+            super::EdgeOwners::with_capacity_and_hasher(3 * N, crate::hash::KeyedBuild::default());
+        let keyed = |e: &(u32, u32)| owners.hasher().hash_one(e);
+        assert_eq!(
+            collisions(&crafted, &|e| fx.hash_one(e)),
+            (N * (N - 1) / 2) as u64
+        );
+        let (c, r) = (collisions(&crafted, &keyed), collisions(&random, &keyed));
+        let spread = (N * N / (2 * buckets)) as u64;
+        assert!(
+            c <= 3 * r.max(spread),
+            "crafted {c} vs random {r} collisions"
+        );
+        assert!(
+            c <= 2 * spread.max(8),
+            "crafted {c}, expected about {spread}"
+        );
     }
 }

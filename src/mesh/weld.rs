@@ -3,7 +3,7 @@
 use glam::DVec3;
 use smallvec::SmallVec;
 
-use crate::hash::{FxHashMap, KeyedBuild, KeyedHashMap, key};
+use crate::hash::{KeyedBuild, KeyedHashMap, key};
 
 /// Assigns one index per distinct position.
 #[derive(Default)]
@@ -38,7 +38,8 @@ impl Welder {
 #[derive(Clone, Default)]
 pub(crate) struct Wide {
     points: Vec<DVec3>,
-    grid: FxHashMap<[i64; 3], SmallVec<[u32; 2]>>,
+    /// Cells of input-derived points: keyed (see `crate::hash`).
+    grid: KeyedHashMap<[i64; 3], SmallVec<[u32; 2]>>,
     delta: f64,
 }
 
@@ -253,11 +254,6 @@ mod tests {
         let fx = FxBuild::default();
         // FxHash of `[u64; 3]` is a fold over its length and its words' bytes: the state after
         // the length, x = 1 and y = 2 is shared, so only z's eight bytes are hashed per try.
-        let fx_bytes = |state: u64, bytes: &[u8]| {
-            bytes.iter().fold(state, |h, &b| {
-                (h.rotate_left(5) ^ u64::from(b)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95)
-            })
-        };
         let prefix = fx_bytes(
             0,
             &[
@@ -309,5 +305,78 @@ mod tests {
             }
             assert_eq!(welder.positions.len(), N);
         }
+    }
+
+    /// FxHash's per-byte fold (the crate's unkeyed hasher) from `state` over `bytes`.
+    fn fx_bytes(state: u64, bytes: &[u8]) -> u64 {
+        bytes.iter().fold(state, |h, &b| {
+            (h.rotate_left(5) ^ u64::from(b)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95)
+        })
+    }
+
+    /// Issue 12 item 8 (the crack welder's grid): cells of crack points come from input
+    /// positions, so cells crafted to share one bucket under the unkeyed hash spread under the
+    /// grid's own hasher as well as random cells do, and the wide reach still finds them.
+    #[test]
+    fn a_wide_grid_of_crafted_cells_spreads_like_a_random_one() {
+        const N: usize = 1024;
+        let buckets = (N * 8 / 7).next_power_of_two();
+        let mask = (buckets - 1) as u64;
+        // `[i64; 3]` hashes as its length then its 24 bytes: cells (1, 2, z), z crafted.
+        let prefix = fx_bytes(
+            0,
+            &[
+                &3usize.to_ne_bytes()[..],
+                &1i64.to_le_bytes(),
+                &2i64.to_le_bytes(),
+            ]
+            .concat(),
+        );
+        let mut crafted = Vec::with_capacity(N);
+        let mut z = 0i64;
+        while crafted.len() < N {
+            if fx_bytes(prefix, &z.to_le_bytes()) & mask == 0 {
+                crafted.push(z);
+            }
+            z += 1;
+        }
+        // Points at those cells' centres (cells of side 2 · delta = 1).
+        let delta = 0.5;
+        let at = |z: i64| DVec3::new(1.5, 2.5, z as f64 + 0.5);
+        let crafted: Vec<DVec3> = crafted.into_iter().map(at).collect();
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let random: Vec<DVec3> = (0..N)
+            .map(|_| {
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                at((state >> 40) as i64)
+            })
+            .collect();
+        let fx = FxBuild::default();
+        let cells = |points: &[DVec3]| -> Vec<[i64; 3]> {
+            points.iter().map(|&p| cell_of(p, 2.0 * delta)).collect()
+        };
+        assert_eq!(
+            bucket_collisions(cells(&crafted).iter().map(|c| fx.hash_one(c)), buckets),
+            (N * (N - 1) / 2) as u64,
+            "crafted into one bucket under the unkeyed hash"
+        );
+        let count = |points: &[DVec3]| {
+            let mut wide = Wide::default();
+            wide.widen(points, delta);
+            let h = wide.grid.hasher();
+            for &p in points {
+                assert_eq!(wide.reach(p + DVec3::splat(0.1), 1e-9), delta);
+            }
+            bucket_collisions(cells(points).iter().map(|c| h.hash_one(c)), buckets)
+        };
+        let (c, r) = (count(&crafted), count(&random));
+        let spread = (N * N / (2 * buckets)) as u64;
+        assert!(
+            c <= 3 * r.max(spread),
+            "crafted {c} vs random {r} collisions"
+        );
+        assert!(c <= 2 * spread, "crafted {c}, expected about {spread}");
     }
 }

@@ -12,7 +12,7 @@ use gltf::mesh::Mode;
 use super::container::glb_bytes;
 use super::uri::percent_encode;
 use crate::error::{Error, MeshDefect, Result};
-use crate::hash::FxHashMap;
+use crate::hash::KeyedHashMap;
 use crate::io::{Files, OutFile, generator};
 use crate::mesh::{Material, Mesh};
 
@@ -34,7 +34,8 @@ fn parts(mesh: &Mesh) -> Vec<Part> {
     groups
         .into_iter()
         .map(|(source, tris)| {
-            let mut map: FxHashMap<(u32, [u32; 3]), u32> = FxHashMap::default();
+            // Keyed: the normals come from the input's geometry (see `crate::hash`).
+            let mut map: KeyedHashMap<(u32, [u32; 3]), u32> = KeyedHashMap::default();
             let mut part = Part {
                 source,
                 positions: Vec::new(),
