@@ -251,4 +251,37 @@ mod tests {
         let tree = Tree::build(sphere.into_polygons(), 1e-12);
         assert!(tree.depth() < 64, "depth {} for {n} polygons", tree.depth());
     }
+
+    /// Issue 12 item 6: a tree's build charges the corners of the pieces its splits cut to the
+    /// boolean's meter, as clipping does, and stops past the meter's limit, so a boolean whose
+    /// trees alone cut past its budget is refused before clipping with them (four copies of a
+    /// 10,000-point wavy extrusion stopped at 1.0 GB, not 3.1 GB). With room, the tree is the
+    /// one an unmetered build makes.
+    #[test]
+    fn a_tree_build_charges_its_cut_pieces_and_stops_past_its_meter() {
+        let polygons = Solid::sphere(1.0, 128, 64).unwrap().into_polygons();
+        let whole = Tree::build_focused(&polygons, 1e-12, None, None);
+        let roomy = Meter::new(u64::MAX);
+        let metered = Tree::build_focused(&polygons, 1e-12, None, Some(&roomy));
+        assert_eq!(metered.nodes.len(), whole.nodes.len());
+        assert_eq!(metered.polygons.len(), whole.polygons.len());
+        // Cell splits cut about two pieces per polygon here, each of three or four corners.
+        let per_polygon = roomy.used() as f64 / polygons.len() as f64;
+        assert!(
+            per_polygon > 1.0 && per_polygon < 32.0,
+            "{} corners for {} polygons",
+            roomy.used(),
+            polygons.len()
+        );
+        let limit = roomy.used() / 4;
+        let tight = Meter::new(limit);
+        let stopped = Tree::build_focused(&polygons, 1e-12, None, Some(&tight));
+        assert!(tight.exceeded());
+        assert!(
+            tight.used() < limit + 2 * meter::CHARGE_EVERY,
+            "{}",
+            tight.used()
+        );
+        assert!(stopped.nodes.len() < whole.nodes.len() / 2);
+    }
 }

@@ -47,11 +47,12 @@ impl std::fmt::Display for BoolOp {
 }
 
 /// The work a boolean may do at least, whatever its operands' size: the corners of the pieces
-/// its clipping cuts (see [`Solid::check_budget`]). 2²⁴, the scene's budget too
-/// ([`crate::MAX_SCENE_WORK`]): about half a minute and 2–3 GB on a 2-core machine where faces
-/// nearly coincide (four copies of a 10,000-point wavy outline extruded, 0.016 apart, cut
-/// 21 M in 34 CPU-s and 3.1 GB; now they are stopped at 12 CPU-s). Ordinary booleans cut far
-/// less: rocker-arm ∪ moved 0.32 M, the 512 × 256 sphere ∪ moved 0.28 M.
+/// building its trees and clipping cut (see [`Solid::check_budget`]). 2²⁴, the scene's budget
+/// too ([`crate::MAX_SCENE_WORK`]): about half a minute and 2–3 GB on a 2-core machine where
+/// faces nearly coincide (four copies of a 10,000-point wavy outline extruded, 0.016 apart, cut
+/// 21 M in clipping alone in 34 CPU-s and 3.1 GB; now they are stopped at 3.4 CPU-s and
+/// 1.0 GB). Ordinary booleans cut far less: rocker-arm ∪ moved 0.25 M, the 256 × 128 sphere ∪
+/// moved 0.10 M.
 pub const MAX_BOOLEAN_WORK: u64 = 1 << 24;
 
 /// The work a boolean may do per polygon of its operands, where that is more than
@@ -214,13 +215,13 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance, meter: &Me
     let (near_a, near_b) = surface_a.near_each_other(&surface_b, margin);
     let (a_kept, b_kept) = rayon::join(
         || {
-            let tree_b = focused_tree(&b, &near_b, &a, &near_a, eps);
+            let tree_b = focused_tree(&b, &near_b, &a, &near_a, eps, meter);
             let far = keep_far(&a, &a_ids, &near_a, &surface_b, a_keep, a_flat);
             let near = tree_b.clip(pick(&a, &near_a), a_keep, a_rule, &surface_b, meter);
             (far, near.into_iter().map(|c| c.polygon).collect())
         },
         || {
-            let tree_a = focused_tree(&a, &near_a, &b, &near_b, eps);
+            let tree_a = focused_tree(&a, &near_a, &b, &near_b, eps, meter);
             let far = keep_far(&b, &b_ids, &near_b, &surface_a, b_keep, b_flat);
             let first = tree_a.clip(
                 pick(&b, &near_b),
@@ -320,6 +321,7 @@ fn focused_tree(
     clipped: &[Polygon],
     clipped_near: &[bool],
     eps: f64,
+    meter: &Meter,
 ) -> Tree {
     let boxes = boxes(clipped, clipped_near);
     Tree::build_focused(
@@ -329,6 +331,7 @@ fn focused_tree(
             boxes: &boxes,
             near: solid_near,
         }),
+        Some(meter),
     )
 }
 

@@ -73,7 +73,8 @@ pub(crate) struct PrecisionLoss {
     pub(crate) eps: f64,
 }
 
-/// A boolean stopped by its work meter: the corners of the pieces its clipping had cut (with
+/// A boolean stopped by its work meter: the corners of the pieces its tree builds and clipping
+/// had cut (with
 /// those of the other booleans sharing the meter) when it stopped, and the limit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Overrun {
@@ -218,7 +219,7 @@ impl Solid {
     }
 
     /// Whether every boolean on the way to this solid finished within its work budget: the
-    /// corners of the pieces its clipping cut, at most [`MAX_BOOLEAN_WORK`] or
+    /// corners of the pieces its tree builds and clipping cut, at most [`MAX_BOOLEAN_WORK`] or
     /// [`WORK_PER_POLYGON`] per polygon of its operands, whichever is more (for the n-ary
     /// reductions, [`boolean_all`], all their booleans together). Ordinary booleans cut a few
     /// corners per polygon near the other operand; faces of different operands that nearly

@@ -15,6 +15,8 @@ pub(super) struct Arena<'a> {
     pub(super) centroids: Vec<DVec3>,
     /// Per piece, the index in `base` of the polygon it was cut from.
     origins: Vec<u32>,
+    /// The corners of the pieces stored since the build last charged its meter.
+    pub(super) cut: u64,
 }
 
 impl<'a> Arena<'a> {
@@ -33,6 +35,7 @@ impl<'a> Arena<'a> {
             boxes,
             centroids,
             origins: Vec::with_capacity(room),
+            cut: 0,
         }
     }
 
@@ -66,6 +69,7 @@ impl<'a> Arena<'a> {
     /// Stores a piece cut from polygon `from`.
     pub(super) fn push(&mut self, p: Polygon, from: u32) -> u32 {
         self.origins.push(self.origin(from));
+        self.cut += p.vertices().len() as u64;
         self.boxes.push(p.bbox());
         self.centroids.push(p.centroid());
         self.pieces.push(p);

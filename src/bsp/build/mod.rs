@@ -15,6 +15,7 @@ use glam::DVec3;
 use self::arena::Arena;
 use self::cell::{axis_of, cell_plane, split_cell, wrap_plane};
 use self::face::Class;
+use super::meter::{CHARGE_EVERY, Meter};
 use super::{Kind, Label, Link, Node, Tree};
 use crate::geom::{Aabb, Plane};
 use crate::polygon::Polygon;
@@ -106,7 +107,7 @@ struct Work {
 impl Tree {
     /// Builds the whole tree of a closed solid's polygons with plane-side tolerance `eps`.
     pub fn build(polygons: Vec<Polygon>, eps: f64) -> Tree {
-        Tree::build_focused(&polygons, eps, None)
+        Tree::build_focused(&polygons, eps, None, None)
     }
 
     /// The whole cell, before any plane bounds it.
@@ -125,7 +126,16 @@ impl Tree {
     /// surface does not cross it and `Tree::clip` labels it from one point, by counting
     /// crossings (see [`Kind::Stub`]). On rocker-arm ∪ moved about 4,800 fragments per
     /// boolean are labelled so.
-    pub fn build_focused(polygons: &[Polygon], eps: f64, focus: Option<Focus>) -> Tree {
+    ///
+    /// The corners of the pieces its splits cut are charged to `meter`, as a clip's are: past
+    /// its limit the build stops, leaving the cells not yet built as leaves, and the tree is
+    /// for no use (a clip by it returns nothing once the meter is past its limit).
+    pub fn build_focused(
+        polygons: &[Polygon],
+        eps: f64,
+        focus: Option<Focus>,
+        meter: Option<&Meter>,
+    ) -> Tree {
         // Room for about what the trees of real models end with (half a node and half a stored
         // polygon per polygon of the solid): regrowing from empty was 5 % of the build.
         let mut tree = Tree {
@@ -212,6 +222,12 @@ impl Tree {
             }
             tree.nodes.push(node);
             tree.attach(slot, index);
+            if let Some(meter) = meter
+                && arena.cut >= CHARGE_EVERY
+                && !meter.charge(std::mem::take(&mut arena.cut))
+            {
+                break;
+            }
             if !front.is_empty() {
                 work.push(Work {
                     ids: front,
@@ -228,6 +244,9 @@ impl Tree {
                     cell: back_cell,
                 });
             }
+        }
+        if let Some(meter) = meter {
+            meter.charge(arena.cut);
         }
         tree.fill_content();
         tree

@@ -27,10 +27,11 @@ pub const MAX_SCENE_POLYGONS: u64 = crate::primitives::MAX_POLYGONS;
 /// The estimate counts corners, not how the kernel fares with them: faces of different
 /// primitives that nearly coincide (copies of one 10,000-point outline a little apart) cost far
 /// more. So the scene's booleans also share one work meter with the same limit, counting the
-/// corners of the pieces their clipping cuts (see [`crate::Solid::check_budget`]), and stop
-/// past it: 46 such copies are refused after 8 CPU-s and 1.6 GB (they ran past 14 GB), eight
-/// after 7 CPU-s and 1.4 GB, four after 12 CPU-s and 3.1 GB (the last union stops; whole, it
-/// cuts 21 M and takes 34 CPU-s).
+/// corners of the pieces their tree builds and clipping cut (see
+/// [`crate::Solid::check_budget`]), and stop past it: 46 such copies are refused after 4.6 CPU-s
+/// and 1.3 GB (they ran past 14 GB), eight after 5.1 CPU-s and 1.1 GB, four after 3.4 CPU-s and
+/// 1.0 GB (in their first unions; unmetered, the last union cuts 21 M in clipping alone and
+/// takes 34 CPU-s).
 pub const MAX_SCENE_WORK: u64 = crate::solid::MAX_BOOLEAN_WORK;
 
 /// What the BSP route would make of a scene at one tolerance, counted before tessellating.
