@@ -142,6 +142,26 @@ pub enum Error {
         report: String,
     },
 
+    /// A solid's mesh is a closed 2-manifold (or empty) but bounds a volume the solid's polygons
+    /// do not, by more than the repair that made it may change it (see
+    /// [`Solid::check_mesh_volume`](crate::Solid::check_mesh_volume)): the last guard against
+    /// passing on a wrong result, a fault of the kernel on hard input. Remedy as for
+    /// [`Error::BrokenResult`].
+    #[error(
+        "the result's mesh bounds a volume of {mesh:e} where the solid's polygons bound \
+         {polygons:e}, more than the {bound:e} its repair may change; the repair went wrong on \
+         this input: move or scale the operands slightly (the fault lies where nearly \
+         coincident features meet), or report the input"
+    )]
+    WrongVolume {
+        /// The mesh's volume.
+        mesh: f64,
+        /// The volume the solid's polygons bound.
+        polygons: f64,
+        /// How far apart the two may be.
+        bound: f64,
+    },
+
     /// A scene document is invalid. `json_path` locates the fault, e.g. `$.children[2].data.radius`;
     /// `file` names the document where it was read from a file.
     #[error("{}{json_path}: {message}", file.as_ref().map(|f| format!("{}: ", f.display())).unwrap_or_default())]

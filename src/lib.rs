@@ -133,8 +133,8 @@ pub use sdf::{
 };
 pub use sketch::{ExtrudeOptions, FillRule, Region, Sketch, SketchReport, TWIST_DEGREES_PER_SLICE};
 pub use solid::{
-    BoolOp, Containment, MAX_BOOLEAN_WORK, ParseBoolOpError, PointClassifier, Solid,
-    WORK_PER_POLYGON, boolean, boolean_all, boolean_with,
+    BoolOp, Containment, MAX_BOOLEAN_WORK, MESH_VOLUME_RELATIVE, MESH_VOLUME_TOLERANCES,
+    ParseBoolOpError, PointClassifier, Solid, WORK_PER_POLYGON, boolean, boolean_all, boolean_with,
 };
 
 pub use glam;

@@ -22,6 +22,7 @@ mod vertex_ids;
 pub use boolean::{
     BoolOp, MAX_BOOLEAN_WORK, ParseBoolOpError, WORK_PER_POLYGON, boolean, boolean_with,
 };
+pub use checked::{MESH_VOLUME_RELATIVE, MESH_VOLUME_TOLERANCES};
 pub use measure::{Containment, PointClassifier};
 pub use ops::boolean_all;
 pub(crate) use ops::boolean_all_metered;

@@ -54,7 +54,7 @@ pub(crate) fn check(args: &CheckArgs, progress: &Progress) -> Result<(), Failure
             (mesh, path.display().to_string(), None)
         }
         None => {
-            let mesh = scene_mesh(&scene, args.via, None, None, progress).map_err(in_scene)?;
+            let (mesh, _) = scene_mesh(&scene, args.via, None, None, progress).map_err(in_scene)?;
             // The route's own accuracy: the chordal tolerance (twice it: smooth blends are
             // baked at four times it) or the marching-cubes cell, at their defaults.
             let t = match args.via {

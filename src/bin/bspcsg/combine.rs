@@ -64,7 +64,15 @@ pub(crate) fn combine(op: BoolOp, args: &BooleanArgs, progress: &Progress) -> Re
     } else {
         Expect::Closed
     };
-    finish(out, format, &solid.to_mesh(), &materials, expect, progress)
+    finish(
+        out,
+        format,
+        &solid.to_mesh(),
+        &materials,
+        expect,
+        Some(&solid),
+        progress,
+    )
 }
 
 /// The material that marks input `i`'s triangles: named after its file, coloured from a small

@@ -14,5 +14,5 @@ pub(crate) fn convert(args: &ConvertArgs, progress: &Progress) -> Result<(), Fai
     progress.step(format!("reading {}", args.input.display()));
     let mesh = read_mesh(&args.input)?;
     warn_if_empty_input(&args.input, mesh.is_empty(), progress);
-    finish(out, format, &mesh, &[], Expect::Any, progress)
+    finish(out, format, &mesh, &[], Expect::Any, None, progress)
 }

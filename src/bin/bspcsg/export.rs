@@ -1,6 +1,6 @@
 //! `export`: a scene document to a mesh, by the BSP route or by marching cubes.
 
-use bspcsg::{BakeOptions, Error, Mesh, Scene, TessellationOptions};
+use bspcsg::{BakeOptions, Error, Mesh, Scene, Solid, TessellationOptions};
 
 use crate::cli::{ExportArgs, Via};
 use crate::failure::Failure;
@@ -23,7 +23,7 @@ pub(crate) fn export(args: &ExportArgs, progress: &Progress) -> Result<(), Failu
     };
     progress.step(format!("reading {}", args.scene.display()));
     let scene = Scene::from_path(&args.scene).map_err(in_scene)?;
-    let mesh =
+    let (mesh, solid) =
         scene_mesh(&scene, args.via, args.tolerance, args.cell, progress).map_err(in_scene)?;
     if args.via == Via::Sdf {
         warn_lost_to_the_grid(&scene, args.cell, mesh.is_empty(), progress);
@@ -34,6 +34,7 @@ pub(crate) fn export(args: &ExportArgs, progress: &Progress) -> Result<(), Failu
         &mesh,
         scene.materials(),
         Expect::Closed,
+        solid.as_ref(),
         progress,
     )
 }
@@ -122,7 +123,7 @@ pub(crate) fn scene_mesh(
     tolerance: Option<f64>,
     cell: Option<f64>,
     progress: &Progress,
-) -> Result<Mesh, Error> {
+) -> Result<(Mesh, Option<Solid>), Error> {
     Ok(match via {
         Via::Bsp => {
             progress.step("tessellating and combining");
@@ -133,7 +134,7 @@ pub(crate) fn scene_mesh(
             };
             let solid = scene.to_solid(&options)?;
             progress.step("repairing (welding, closing T-junctions)");
-            solid.to_mesh()
+            (solid.to_mesh(), Some(solid))
         }
         Via::Sdf => {
             progress.step("baking by marching cubes");
@@ -141,7 +142,7 @@ pub(crate) fn scene_mesh(
                 cell,
                 ..BakeOptions::default()
             };
-            scene.bake(&options)?
+            (scene.bake(&options)?, None)
         }
     })
 }

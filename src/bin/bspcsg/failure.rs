@@ -3,6 +3,7 @@
 use bspcsg::Error;
 
 /// Why a command failed: the message printed and the exit code.
+#[derive(Debug)]
 pub(crate) struct Failure {
     pub(crate) message: String,
     pub(crate) code: u8,
@@ -27,6 +28,7 @@ impl From<Error> for Failure {
         let code = match e {
             Error::InvalidMesh { .. }
             | Error::BrokenResult { .. }
+            | Error::WrongVolume { .. }
             | Error::OverBudget { .. }
             | Error::BeyondBudget { .. }
             | Error::BeyondPrecision { .. } => 2,

@@ -6,7 +6,7 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
-use bspcsg::{Format, Material, Mesh, MeshReport, write_mesh_as};
+use bspcsg::{Format, Material, Mesh, MeshReport, Solid, write_mesh_as};
 
 use crate::cli::OutputArgs;
 use crate::failure::Failure;
@@ -129,19 +129,28 @@ pub(crate) fn not_written(out: &Path, report: &MeshReport) -> Failure {
 }
 
 /// Writes the result and prints a summary, with a warning when the result is empty or (where
-/// that is allowed) not a closed 2-manifold.
+/// that is allowed) not a closed 2-manifold. A result expected closed that is made from a solid
+/// (`made_from`: a boolean's, a scene's by the BSP route) must also bound the volume the solid's
+/// polygons do ([`Solid::check_mesh_volume`]), or nothing is written (exit 2).
 pub(crate) fn finish(
     out: &Path,
     format: Format,
     mesh: &Mesh,
     materials: &[Material],
     expect: Expect,
+    made_from: Option<&Solid>,
     progress: &Progress,
 ) -> Result<(), Failure> {
     progress.step("checking the result");
     let report = mesh.report();
     if expect == Expect::Closed && !mesh.is_empty() && !report.is_closed_manifold() {
         return Err(not_written(out, &report));
+    }
+    if let Some(solid) = made_from.filter(|_| expect == Expect::Closed) {
+        solid.check_mesh_volume(mesh).map_err(|e| Failure {
+            message: format!("{e}; {} is not written", out.display()),
+            code: 2,
+        })?;
     }
     progress.step(format!("writing {}", out.display()));
     // Directories too appear only once the work has succeeded, and go again if the write fails.
@@ -277,5 +286,70 @@ fn same_file(a: &Path, b: &Path) -> bool {
     match (std::fs::metadata(a), std::fs::metadata(b)) {
         (Ok(x), Ok(y)) => x.dev() == y.dev() && x.ino() == y.ino(),
         _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use bspcsg::{Format, Solid};
+
+    use super::{Expect, finish};
+    use crate::progress::Progress;
+
+    /// Issue 12 (no silent wrong answer): a result that is a closed 2-manifold but bounds
+    /// another volume than the solid it was made from is refused with exit 2 and not written;
+    /// its own mesh is written, and a result allowed open is not held to it.
+    #[test]
+    fn a_closed_result_bounding_another_volume_than_its_solid_is_not_written() {
+        let dir = std::env::temp_dir().join(format!("bspcsg-volume-guard-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = dir.join("result.obj");
+        let cube = Solid::cube(1.0).unwrap();
+        let larger = Solid::cube(1.1).unwrap().to_mesh();
+        let quiet = Progress::new(true);
+        let refused = finish(
+            &out,
+            Format::Obj,
+            &larger,
+            &[],
+            Expect::Closed,
+            Some(&cube),
+            &quiet,
+        )
+        .unwrap_err();
+        assert_eq!(refused.code, 2);
+        assert!(
+            refused.message.contains("bounds a volume of 1.331")
+                && refused.message.contains("polygons bound 1e0")
+                && refused.message.ends_with("result.obj is not written"),
+            "{}",
+            refused.message
+        );
+        assert!(!out.exists());
+        let own = cube.to_mesh();
+        finish(
+            &out,
+            Format::Obj,
+            &own,
+            &[],
+            Expect::Closed,
+            Some(&cube),
+            &quiet,
+        )
+        .unwrap();
+        assert!(out.exists());
+        std::fs::remove_file(&out).unwrap();
+        finish(
+            &out,
+            Format::Obj,
+            &larger,
+            &[],
+            Expect::Any,
+            Some(&cube),
+            &quiet,
+        )
+        .unwrap();
+        assert!(out.exists());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -54,7 +54,7 @@ pub(crate) fn render(args: &RenderArgs, progress: &Progress) -> Result<(), Failu
                 } else {
                     Via::Sdf
                 };
-                let mesh = scene_mesh(&scene, route, None, None, progress).map_err(named)?;
+                let (mesh, _) = scene_mesh(&scene, route, None, None, progress).map_err(named)?;
                 progress.step("building the BVH");
                 let bvh = Box::new(MeshBvh::build(&mesh));
                 Subject::Mesh {
