@@ -5,38 +5,42 @@ use super::work::Work;
 use super::{Op, Plan};
 
 impl Work {
-    /// One operation on needle `t`, of those that apply the one that moves the surface least;
-    /// the triangles it changed, or `None` when none applies.
+    /// The operation on needle `t` that, of those that apply, moves the surface least, or
+    /// `None` when none applies.
     ///
     /// First within twice the needle's own thickness (or the boolean's tolerance); where
     /// nothing applies that close, within the shell's bound ([`super::SPECK_MOVE`] × d). A
     /// needle where near-coplanar faces meet is often a spike whose short edge is far longer
     /// than its thickness (6·10⁻⁹ beside a height of 10⁻¹²): collapsing that edge keeps the
     /// volume and moves the surface by about its length, far inside the bound.
-    pub(super) fn fix(&mut self, t: u32) -> Option<Vec<u32>> {
+    pub(super) fn plan(&self, t: u32) -> Option<Op> {
         let tri = self.tris[t as usize];
         let shell = self.shell[tri[0] as usize] as usize;
         let bound = self.max_move[shell];
         let limit = bound.min((2.0 * self.height(t)).max(self.tolerance[shell]));
-        let best = match self.choose(t, limit) {
+        match self.choose(t, limit) {
             None if limit < bound => self.choose(t, bound),
             best => best,
         }
-        .or_else(|| self.widen(t, bound));
-        match best? {
+        .or_else(|| self.widen(t, bound))
+    }
+
+    /// Applies `op` (planned by [`Work::plan`]); the triangles it changed.
+    pub(super) fn apply(&mut self, op: Op) -> Vec<u32> {
+        match op {
             Op::Move { v, at } => {
                 self.positions[v as usize] = at;
-                Some(self.around[v as usize].to_vec())
+                self.around[v as usize].to_vec()
             }
-            Op::Flip { t, u, new_t, new_u } => Some(self.apply_flip(t, u, new_t, new_u)),
+            Op::Flip { t, u, new_t, new_u } => self.apply_flip(t, u, new_t, new_u),
             Op::Collapse {
                 from,
                 to,
                 at,
                 t1,
                 t2,
-            } => Some(self.apply_collapse(from, to, at, t1, t2)),
-            Op::Merge { t, at } => Some(self.apply_merge(t, at)),
+            } => self.apply_collapse(from, to, at, t1, t2),
+            Op::Merge { vertices, at } => self.apply_merge(&vertices, at),
         }
     }
 
@@ -105,6 +109,13 @@ impl Work {
         let mut merges: Option<(f64, Op)> = None;
         if collapses.is_none() && flips.is_none() {
             consider(&mut merges, self.plan_merge(t));
+            // Where the speck is one of a patch of them (every edge below the speck length)
+            // and even its merge folds a neighbour there, the whole patch may merge.
+            if merges.is_none()
+                && let Some(cluster) = self.cluster(t)
+            {
+                consider(&mut merges, self.plan_merge_of(&cluster));
+            }
         }
         let best = if short_edge {
             let mut stretches: Option<(f64, Op)> = None;

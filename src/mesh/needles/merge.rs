@@ -1,13 +1,20 @@
-//! Merging a speck's three corners into one vertex, where no single edge collapse may.
+//! Merging a speck's three corners, or a cluster of vertices joined by speck-short edges, into
+//! one vertex, where no single edge collapse may.
 //!
 //! A speck can sit where no edge of it collapses: between two flat slivers whose short edges
 //! are its own (each collapse of one of its edges leaves the sliver across flat), or on a
 //! vertex of valence three (collapsing the edge opposite makes a doubled face). Taking the whole
 //! speck at once removes it with every triangle that holds two of its corners, and the
-//! condition is on the region it replaces, not on one edge: the triangles around the three
-//! corners form a disk (Euler characteristic 1) whose boundary, the merged vertex's link, is
+//! condition is on the region it replaces, not on one edge: the triangles around the merged
+//! vertices form a disk (Euler characteristic 1) whose boundary, the merged vertex's link, is
 //! one simple cycle. Then the cone from the merged vertex over that cycle is again a closed
 //! 2-manifold of the same genus.
+//!
+//! Where the speck is one of several triangles in a patch whose every edge is below the speck
+//! length (the tiny loop where two nearly equal cone apexes cross, corners 3.5·10⁻¹⁰ apart on a
+//! shell of 1.5), each collapse and each three-corner merge folds a neighbour in the patch: the
+//! whole patch, its vertices joined by such edges ([`Work::cluster`]), merges at once, on the
+//! same condition.
 
 use glam::DVec3;
 use smallvec::SmallVec;
@@ -15,16 +22,66 @@ use smallvec::SmallVec;
 use super::work::Work;
 use super::{Op, Plan};
 
+/// The most vertices a cluster merge takes at once: a patch of specks is a few points computed
+/// apart where several planes nearly meet, not a region of the mesh.
+const CLUSTER_VERTICES: usize = 16;
+
 impl Work {
-    /// Merging the corners of triangle `t` into one vertex: the move and the operation, if the
-    /// triangles around them form a disk, and every triangle that stays keeps its orientation
-    /// and area. The merged vertex is put where the volume is kept, from whichever of the
-    /// corners and the centroid moves the surface least.
+    /// Merging the corners of triangle `t` into one vertex (see [`Work::plan_merge_of`]).
     pub(super) fn plan_merge(&self, t: u32) -> Option<Plan> {
+        self.plan_merge_of(&self.tris[t as usize])
+    }
+
+    /// The vertices joined to needle `t`'s shortest edge's ends by edges below the speck length
+    /// (the shortest edge of a triangle of the needle area, equilateral): `None` where that edge
+    /// is not that short, or the cluster is only `t`'s corners (a merge of `t`) or grows past
+    /// [`CLUSTER_VERTICES`].
+    pub(super) fn cluster(&self, t: u32) -> Option<SmallVec<[u32; 8]>> {
         let tri = self.tris[t as usize];
-        let star = self.star(tri);
-        // The triangles that keep one corner, as (triangle, its corner); the link edges are
-        // theirs opposite that corner. Those with two or three corners vanish.
+        let c = self.corners(tri);
+        let speck = (4.0 / 3f64.sqrt() * self.threshold(tri)).sqrt();
+        let short = |a: u32, b: u32| {
+            self.positions[a as usize].distance(self.positions[b as usize]) < speck
+        };
+        let k = (0..3).min_by(|&i, &j| {
+            let len = |k: usize| c[k].distance_squared(c[(k + 1) % 3]);
+            len(i).total_cmp(&len(j))
+        })?;
+        let (p, q) = (tri[k], tri[(k + 1) % 3]);
+        if !short(p, q) {
+            return None;
+        }
+        let mut cluster: SmallVec<[u32; 8]> = SmallVec::new();
+        cluster.push(p);
+        cluster.push(q);
+        let mut next = 0;
+        while next < cluster.len() {
+            let v = cluster[next];
+            next += 1;
+            for &u in &self.around[v as usize] {
+                for w in self.tris[u as usize] {
+                    if !cluster.contains(&w) && short(v, w) {
+                        if cluster.len() == CLUSTER_VERTICES {
+                            return None;
+                        }
+                        cluster.push(w);
+                    }
+                }
+            }
+        }
+        let only_t = cluster.len() <= 3 && cluster.iter().all(|v| tri.contains(v));
+        (!only_t).then_some(cluster)
+    }
+
+    /// Merging `vertices` (a triangle's corners, or a [`Work::cluster`]) into one vertex: the
+    /// move and the operation, if the triangles around them form a disk whose boundary is one
+    /// simple cycle through every other vertex of theirs, and every triangle that stays keeps
+    /// its orientation and area. The merged vertex is put where the volume is kept, from
+    /// whichever of the vertices and their centroid moves the surface least.
+    pub(super) fn plan_merge_of(&self, vertices: &[u32]) -> Option<Plan> {
+        let star = self.star(vertices);
+        // The triangles that keep one vertex, as (triangle, its vertex); the link edges are
+        // theirs opposite that vertex. Those with two or more vanish.
         let mut kept: SmallVec<[(u32, u32); 24]> = SmallVec::new();
         let mut dying = 0;
         for &u in &star {
@@ -32,7 +89,7 @@ impl Work {
             let mut corner = None;
             let mut count = 0;
             for w in other {
-                if tri.contains(&w) {
+                if vertices.contains(&w) {
                     corner = Some(w);
                     count += 1;
                 }
@@ -42,20 +99,28 @@ impl Work {
                 _ => dying += 1,
             }
         }
-        if self.shell_tris[self.shell[tri[0] as usize] as usize] <= dying + 4
+        if self.shell_tris[self.shell[vertices[0] as usize] as usize] <= dying + 4
             || !self.is_disk(&star)
             || !self.link_is_cycle(&kept)
+            || !self.link_holds_the_rest(vertices, &star, &kept)
         {
             return None;
         }
-        let c = self.corners(tri);
-        let candidates = [c[0], c[1], c[2], (c[0] + c[1] + c[2]) / 3.0];
+        let centroid = vertices
+            .iter()
+            .map(|&v| self.positions[v as usize])
+            .sum::<DVec3>()
+            / vertices.len() as f64;
+        let candidates = vertices
+            .iter()
+            .map(|&v| self.positions[v as usize])
+            .chain([centroid]);
         let mut best: Option<(f64, f64, DVec3)> = None;
         for base in candidates {
             let Some(at) = self.keep_volume(&star, &kept, base) else {
                 continue;
             };
-            let Some((dev, swept)) = self.merge_move(tri, &kept, at) else {
+            let Some((dev, swept)) = self.merge_move(vertices, &kept, at) else {
                 continue;
             };
             if best.is_none_or(|(d, _, _)| dev < d) {
@@ -66,7 +131,25 @@ impl Work {
         Some(Plan {
             dev,
             swept,
-            op: Op::Merge { t, at },
+            op: Op::Merge {
+                vertices: vertices.iter().copied().collect(),
+                at,
+            },
+        })
+    }
+
+    /// Every vertex of `star` but the merged `vertices` is on the link (the kept triangles'
+    /// edges opposite their merged vertex): none vanishes inside the patch. (Three corners of
+    /// a triangle on a closed mesh leave none inside; a cluster could.)
+    fn link_holds_the_rest(&self, vertices: &[u32], star: &[u32], kept: &[(u32, u32)]) -> bool {
+        star.iter().all(|&u| {
+            self.tris[u as usize].iter().all(|w| {
+                vertices.contains(w)
+                    || kept.iter().any(|&(k, v)| {
+                        let (a, b) = self.opposite_edge(k, v);
+                        a == *w || b == *w
+                    })
+            })
         })
     }
 
@@ -150,13 +233,13 @@ impl Work {
         }
     }
 
-    /// The surface move and swept volume of merging `tri`'s corners at `at`, or `None` where a
-    /// kept triangle would fold or go flat. Measured as an edge collapse is: the merged vertex
-    /// from each kept triangle's old plane, each corner from its triangles' new planes; a
-    /// corner left with no triangle (of valence three) by its distance to `at`.
-    fn merge_move(&self, tri: [u32; 3], kept: &[(u32, u32)], at: DVec3) -> Option<(f64, f64)> {
+    /// The surface move and swept volume of merging `vertices` at `at`, or `None` where a kept
+    /// triangle would fold or go flat. Measured as an edge collapse is: the merged vertex from
+    /// each kept triangle's old plane, each vertex from its triangles' new planes; a vertex
+    /// left with no triangle (of valence three) by its distance to `at`.
+    fn merge_move(&self, vertices: &[u32], kept: &[(u32, u32)], at: DVec3) -> Option<(f64, f64)> {
         let (mut dev, mut swept) = (0.0f64, 0.0);
-        for v in tri {
+        for &v in vertices {
             if !kept.iter().any(|&(_, w)| w == v) {
                 dev = dev.max(self.positions[v as usize].distance(at));
             }
@@ -171,12 +254,11 @@ impl Work {
         Some((dev, swept))
     }
 
-    /// Merges the corners of `t` into its first, moved to `at`: every triangle holding two or
-    /// three of them is deleted, the others are relinked to the merged vertex.
-    pub(super) fn apply_merge(&mut self, t: u32, at: DVec3) -> Vec<u32> {
-        let tri = self.tris[t as usize];
-        let keep = tri[0];
-        let star = self.star(tri);
+    /// Merges `vertices` into their first, moved to `at`: every triangle holding two or more
+    /// of them is deleted, the others are relinked to the merged vertex.
+    pub(super) fn apply_merge(&mut self, vertices: &[u32], at: DVec3) -> Vec<u32> {
+        let keep = vertices[0];
+        let star = self.star(vertices);
         for &u in &star {
             self.unlink(u);
         }
@@ -185,7 +267,7 @@ impl Work {
         for &u in &star {
             let corners = self.tris[u as usize]
                 .iter()
-                .filter(|w| tri.contains(w))
+                .filter(|w| vertices.contains(w))
                 .count();
             if corners >= 2 {
                 self.alive[u as usize] = false;
@@ -193,7 +275,7 @@ impl Work {
                 continue;
             }
             for w in self.tris[u as usize].iter_mut() {
-                if tri.contains(w) {
+                if vertices.contains(w) {
                     *w = keep;
                 }
             }

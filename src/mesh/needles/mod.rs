@@ -18,9 +18,11 @@
 //!   the fan's normal by what puts it back (a collapse keeps the volume). The surface moves by
 //!   about `|pq|`. Taken when the needle has a short edge (a *spike* or a speck).
 //! * **Merge** a speck's three corners into one vertex where no single edge may collapse
-//!   (`merge.rs`): between flat slivers that share its edges, or on a vertex of valence three.
-//!   Its condition is on the region it replaces: a disk whose boundary is one simple cycle.
-//!   Keeps the volume as a collapse does.
+//!   (`merge.rs`): between flat slivers that share its edges, or on a vertex of valence three;
+//!   where that folds a neighbour too, the *cluster* of vertices joined to the speck's short
+//!   edge by edges below the speck length (a patch of specks where two cone apexes nearly
+//!   meet). Its condition is on the region it replaces: a disk whose boundary is one simple
+//!   cycle. Keeps the volume as a collapse does.
 //! * **Stretch** a spike no flip or collapse can take (the tip of a thin wedge): one end of its
 //!   short edge moves away from the other along it, about the needle's height, until the
 //!   area is half again the threshold ([`Work::plan_stretch`]).
@@ -45,9 +47,12 @@ mod flip;
 mod geometry;
 mod merge;
 mod stretch;
+#[cfg(test)]
+mod tests;
 mod work;
 
 use glam::DVec3;
+use smallvec::SmallVec;
 
 use super::Mesh;
 use crate::geom::{Aabb, MAX_MOVE, NEEDLE_AREA, Tolerance};
@@ -162,14 +167,24 @@ pub(crate) fn remove_needles(
         if !work.alive[t as usize] || !work.is_needle(t) {
             continue;
         }
-        let star = work.star(work.tris[t as usize]);
+        let op = work.plan(t);
+        // The triangles the operation changes: those around the needle's corners, and, for a
+        // cluster's merge, around every vertex of the cluster.
+        let mut star = work.star(&work.tris[t as usize]);
+        if let Some(Op::Merge { vertices, .. }) = &op {
+            for u in work.star(vertices) {
+                if !star.contains(&u) {
+                    star.push(u);
+                }
+            }
+        }
         let before = work.star_volume(&star, reference);
         for &u in &star {
             if !std::mem::replace(&mut seen[u as usize], true) {
                 seen_area += area(work.corners(work.tris[u as usize]));
             }
         }
-        let fixed = work.fix(t);
+        let fixed = op.map(|op| work.apply(op));
         if fixed.is_none() {
             work.drop_tetrahedron(t);
         }
@@ -261,8 +276,11 @@ enum Op {
         t1: u32,
         t2: u32,
     },
-    /// The corners of triangle `t` into one vertex at `at`.
-    Merge { t: u32, at: DVec3 },
+    /// `vertices` (a triangle's corners, a cluster) into one vertex at `at`.
+    Merge {
+        vertices: SmallVec<[u32; 8]>,
+        at: DVec3,
+    },
     /// Vertex `v` to `at`.
     Move { v: u32, at: DVec3 },
 }

@@ -103,10 +103,11 @@ impl Work {
         })
     }
 
-    /// The live triangles with a corner at a corner of `tri`, each once.
-    pub(super) fn star(&self, tri: [u32; 3]) -> SmallVec<[u32; 24]> {
+    /// The live triangles with a corner among `vertices` (a triangle's corners, a cluster),
+    /// each once.
+    pub(super) fn star(&self, vertices: &[u32]) -> SmallVec<[u32; 24]> {
         let mut star = SmallVec::new();
-        for v in tri {
+        for &v in vertices {
             for &u in &self.around[v as usize] {
                 if !star.contains(&u) {
                     star.push(u);
@@ -183,7 +184,7 @@ impl Work {
         if self.shell_tris[shell] != 4 {
             return;
         }
-        let star = self.star(self.tris[t as usize]);
+        let star = self.star(&self.tris[t as usize]);
         // Only a closed tetrahedron: repair may pass a mesh that still has cracks, where a
         // four-triangle shell can be an open patch whose deletion would widen a hole.
         let closed = star.len() == 4
