@@ -50,8 +50,10 @@ impl<'a> Surface<'a> {
         }
     }
 
-    /// For each polygon of this surface and of `other`, whether its box comes within `margin`
-    /// of a box of the other's polygons.
+    /// For each polygon of this surface and of `other`, whether it comes within `margin` of one
+    /// of the other's polygons: their boxes do, and neither lies wholly beyond the other's plane
+    /// by more than that and [`NEAR_GAP`] tolerances (see [`beyond`]). Box overlap alone kept 2,974 of rocker-arm's 20,088
+    /// triangles near the moved copy; the planes leave about 1,200 (the band a cut crosses).
     ///
     /// One descent of both hierarchies together ([`Bvh::visit_pairs_within`]), in parallel over
     /// pieces of this one: walking `other`'s from its root once per leaf of this one entered
@@ -60,13 +62,33 @@ impl<'a> Surface<'a> {
     pub fn near_each_other(&self, other: &Surface, margin: f64) -> (Vec<bool>, Vec<bool>) {
         let mine: Vec<AtomicBool> = self.boxes.iter().map(|_| AtomicBool::new(false)).collect();
         let theirs: Vec<AtomicBool> = other.boxes.iter().map(|_| AtomicBool::new(false)).collect();
+        // Polygons whose boxes meet but that lie apart by a plane of one of them are not near
+        // (see [`beyond`]), where the gap is more than [`NEAR_GAP`] tolerances.
+        let apart = margin + NEAR_GAP * self.eps.max(other.eps);
         let pieces = self.bvh.cut(64);
         pieces.par_iter().for_each(|&piece| {
             self.bvh
                 .visit_pairs_within(piece, &other.bvh, margin, |i, j| {
-                    if self.boxes[i as usize].overlaps(&other.boxes[j as usize], margin) {
-                        mine[i as usize].store(true, Ordering::Relaxed);
-                        theirs[j as usize].store(true, Ordering::Relaxed);
+                    let (i, j) = (i as usize, j as usize);
+                    if !self.boxes[i].overlaps(&other.boxes[j], margin) {
+                        return;
+                    }
+                    let (seen_i, seen_j) = (
+                        mine[i].load(Ordering::Relaxed),
+                        theirs[j].load(Ordering::Relaxed),
+                    );
+                    if seen_i && seen_j {
+                        return;
+                    }
+                    let (p, q) = (&self.polygons[i], &other.polygons[j]);
+                    if beyond(p, q, apart) || beyond(q, p, apart) {
+                        return;
+                    }
+                    if !seen_i {
+                        mine[i].store(true, Ordering::Relaxed);
+                    }
+                    if !seen_j {
+                        theirs[j].store(true, Ordering::Relaxed);
                     }
                 });
         });
@@ -241,6 +263,41 @@ impl<'a> Surface<'a> {
         } else {
             Label::Outside
         }
+    }
+}
+
+/// How far apart, in tolerances beyond the margin, two polygons whose boxes meet must lie for
+/// [`Surface::near_each_other`] to call them not near: 10⁷, at the relative tolerance
+/// (10⁻¹² of the region) 10⁻⁵ of the region. Faces that nearly coincide stay near, clipped
+/// as before: in a fuzz finding (`a_fin_drop_takes_volume_from_the_mesh`: spheres about one
+/// centre, one turned 10⁻³°) polygons so close were passed whole with a gap of up to 10⁵
+/// tolerances, and the mesh came out 1.2·10⁻⁹ short of the solid's volume; from 10⁶ it is
+/// right. The speed cases count the same at 1 and at 10⁷ (rocker-arm, sphere 256: within
+/// 0.3 M instructions per boolean).
+const NEAR_GAP: f64 = 1e7;
+
+/// Whether every vertex of `poly` lies farther than `apart` to one side of `other`'s plane, and
+/// farther than `apart` beyond `other`'s own corners' distances from it: then every point of
+/// `poly` lies farther than `apart` from every point of `other` (a convex polygon lies between
+/// its corners' distances from any plane).
+fn beyond(poly: &Polygon, other: &Polygon, apart: f64) -> bool {
+    let plane = other.plane();
+    let vertices = poly.vertices();
+    let first = plane.distance(vertices[0]);
+    if first.abs() <= apart {
+        return false;
+    }
+    let own = other
+        .vertices()
+        .iter()
+        .fold(0.0f64, |m, &v| m.max(plane.distance(v).abs()));
+    let reach = apart + own;
+    if first > reach {
+        vertices[1..].iter().all(|&v| plane.distance(v) > reach)
+    } else if first < -reach {
+        vertices[1..].iter().all(|&v| plane.distance(v) < -reach)
+    } else {
+        false
     }
 }
 

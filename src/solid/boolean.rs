@@ -312,7 +312,8 @@ fn pick(polys: &[Polygon], near: &[bool]) -> Vec<Polygon> {
 }
 
 /// The tree of `solid` focused on the near polygons of `clipped`, the operand its tree clips
-/// (a polygon is near when a box of the other operand's comes within the margin): `solid`'s
+/// (a polygon is near when one of the other operand's comes within the margin, see
+/// [`Surface::near_each_other`]): `solid`'s
 /// polygons not near `clipped` are carried whole.
 fn focused_tree(
     solid: &[Polygon],

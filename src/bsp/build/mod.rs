@@ -27,8 +27,10 @@ const CELL_POLYGONS: usize = 12;
 pub(crate) const FOCUS_MARGIN: f64 = 4.0;
 
 /// What a focused build is told: the boxes of what will be clipped against the tree, and per
-/// polygon of the solid whether it is near them; one that is not is *far*: its box misses every
-/// one of them by [`FOCUS_MARGIN`] tolerances, so no fragment clipped can meet it.
+/// polygon of the solid whether it is near them; one that is not is *far*: it comes within
+/// [`FOCUS_MARGIN`] tolerances of none of the polygons clipped (its box misses theirs, or a
+/// plane of one of the two lies between them; see `Surface::near_each_other`), so no fragment
+/// clipped can meet it.
 ///
 /// A far polygon is never cut nor chosen as a splitter. Cell planes are placed by the other
 /// polygons alone ([`wrap_plane`], else their centroids); a far polygon goes whole to each
@@ -171,7 +173,7 @@ impl Tree {
             let near = match (focus, near) {
                 (Some(boxes), Some(near)) => {
                     // Keep only the focus boxes that reach the cell's polygons that are not
-                    // far (a far one's box misses them all): none where every polygon is far.
+                    // far (a far one comes near none of them): none where every polygon is far.
                     let near: Vec<u32> = if ids.near.is_empty() {
                         Vec::new()
                     } else {
