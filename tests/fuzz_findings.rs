@@ -750,7 +750,7 @@ fn the_round_17_fork_run_inputs_that_pass() {
 
 /// Every other input of the round-17 fork run, replayed; the failures listed.
 #[test]
-#[ignore = "open: near-coplanar — 24 inputs of round 17's fork run fail with tiny rotations on (8 not closed, 13 mesh volume off the solid's, 3 volume out of bounds), all pass with them off"]
+#[ignore = "open: near-coplanar — 21 inputs of round 17's fork run fail with tiny rotations on (6 not closed, 12 mesh volume off the solid's, 3 volume out of bounds), all pass with them off"]
 fn the_round_17_fork_run_near_coplanar_inputs() {
     assert_fork_run_passes("round17_fork", 38, &FORK_PASSING);
 }
@@ -795,7 +795,7 @@ fn assert_fork_run_passes(run: &str, kept: usize, skipped: &[&str]) {
 
 /// Every input of the round-18 fork run, replayed; the failures listed.
 #[test]
-#[ignore = "open: near-coplanar — 66 inputs of round 18's fork run fail with tiny rotations on (32 not closed, 24 mesh volume off the solid's, 8 volume out of bounds, 2 needles), all pass with them off"]
+#[ignore = "open: near-coplanar — 53 inputs of round 18's fork run fail with tiny rotations on (26 not closed, 18 mesh volume off the solid's, 9 volume out of bounds), all pass with them off"]
 fn the_round_18_fork_run_near_coplanar_inputs() {
     assert_fork_run_passes("round18_fork", 69, &FORK_18_PASSING);
 }
