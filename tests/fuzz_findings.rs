@@ -709,9 +709,14 @@ fn replay_fork(hash: &str) {
 /// Every collapse of the needle's edges and the merge of its corners folded a neighbour; the
 /// 12 vertices its short edge reaches by such edges now merge into one, the volume kept
 /// (`Work::cluster` in `mesh/needles/merge.rs`).
-const FORK_PASSING: [&str; 13] = [
-    "0948e42e", "1aeb92c4", "4c4a25bc", "4ff3cfe7", "69eb964a", "7b9f78bf", "967a3be9", "cf177d2c",
-    "d6e249f8", "e72a4a41", "ea6f2083", "ec4e381d", "f33d6823",
+///
+/// 75ca2fd2 (the same two spheres, the other of 3 segments: step 1 closed, genus 7, with one
+/// needle): the patch at the pole, 6 vertices within 9.8e-10, is a neck between the two cones,
+/// the triangles around it an annulus; merged it would pinch the surface. It is cut, one apex
+/// per boundary cycle, both at the volume-keeping point.
+const FORK_PASSING: [&str; 14] = [
+    "0948e42e", "1aeb92c4", "4c4a25bc", "4ff3cfe7", "69eb964a", "75ca2fd2", "7b9f78bf", "967a3be9",
+    "cf177d2c", "d6e249f8", "e72a4a41", "ea6f2083", "ec4e381d", "f33d6823",
 ];
 
 /// Replays every input in `hashes` of the fork run kept in `run` (`round17_fork`,
@@ -745,7 +750,7 @@ fn the_round_17_fork_run_inputs_that_pass() {
 
 /// Every other input of the round-17 fork run, replayed; the failures listed.
 #[test]
-#[ignore = "open: near-coplanar — 25 inputs of round 17's fork run fail with tiny rotations on (8 not closed, 13 mesh volume off the solid's, 1 needle, 3 volume out of bounds), all pass with them off"]
+#[ignore = "open: near-coplanar — 21 inputs of round 17's fork run fail with tiny rotations on (6 not closed, 12 mesh volume off the solid's, 3 volume out of bounds), all pass with them off"]
 fn the_round_17_fork_run_near_coplanar_inputs() {
     assert_fork_run_passes("round17_fork", 38, &FORK_PASSING);
 }
@@ -790,7 +795,7 @@ fn assert_fork_run_passes(run: &str, kept: usize, skipped: &[&str]) {
 
 /// Every input of the round-18 fork run, replayed; the failures listed.
 #[test]
-#[ignore = "open: near-coplanar — 66 inputs of round 18's fork run fail with tiny rotations on (32 not closed, 24 mesh volume off the solid's, 8 volume out of bounds, 2 needles), all pass with them off"]
+#[ignore = "open: near-coplanar — 53 inputs of round 18's fork run fail with tiny rotations on (26 not closed, 18 mesh volume off the solid's, 9 volume out of bounds), all pass with them off"]
 fn the_round_18_fork_run_near_coplanar_inputs() {
     assert_fork_run_passes("round18_fork", 69, &FORK_18_PASSING);
 }
@@ -840,6 +845,55 @@ fn a_fin_drop_takes_volume_from_the_mesh() {
 fn the_crossing_line_band_leaves_a_flat_shell() {
     let failures = fork_failures("round18_fork", &["b153683f"]);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+// Found by a 15-minute `booleans` run in round 20 with libFuzzer's fork mode (main a04b93c, seed
+// 2001, `-fork=1 -ignore_crashes=1`, 106,438 executions in 903 s): 109 failing inputs, all but
+// one passing with tiny rotations off, kept in `tests/fuzz_findings/booleans/round20_fork/`
+// (named by the artifact's hash), not minimised. On main after this round's cluster merge and
+// near polygons by planes, 12 of the 108 pass; of the 96 that fail, 44 are not closed, 28 have
+// the mesh's volume off the solid's, 16 the solid's volume outside its bounds and 8 one needle
+// or two. Traced (see the notes of issue 11): in those with the mesh's volume off the solid's,
+// the solid's polygons do not close where near-coplanar faces meet (a piece of a face kept by
+// one operand while its partner's is dropped), and the mesh is the right one; e.g. 22b67390,
+// whose step 2 should be 0.21484375 exactly: the mesh has it, the solid's polygons keep a
+// 1.5e-4 sliver of a face the union should have taken.
+// The one input failing with tiny rotations off too (11b5badf) is minimised below.
+
+/// The inputs of the round-20 fork run that pass now.
+const FORK_20_PASSING: [&str; 12] = [
+    "1d6b6b28", "24057533", "50f56fc8", "54ad2229", "6c2460ab", "78085500", "7d6886ee", "91c935ab",
+    "d116749a", "d3147b45", "de6a214f", "e0c0778c",
+];
+
+/// The inputs of the round-20 fork run that pass now ([`FORK_20_PASSING`]).
+#[test]
+fn the_round_20_fork_run_inputs_that_pass() {
+    let failures = fork_failures("round20_fork", &FORK_20_PASSING);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Every other input of the round-20 fork run, replayed; the failures listed.
+#[test]
+#[ignore = "open: near-coplanar — 96 inputs of round 20's fork run fail with tiny rotations on (44 not closed, 28 mesh volume off the solid's, 16 volume out of bounds, 8 needles), all pass with them off"]
+fn the_round_20_fork_run_near_coplanar_inputs() {
+    assert_fork_run_passes("round20_fork", 108, &FORK_20_PASSING);
+}
+
+/// From the round-20 fork run (11b5badf), failing with tiny rotations off too, so within reach
+/// of the bounded CI run; minimised to 38 bytes: a cylinder (radius 0.125, 6 segments) less a
+/// 0.125 × 0.125 × 0.875 bar turned 9.6e-5 rad about an oblique axis, united with a 1.5 × 0.125
+/// × 0.125 bar. Step 1 is closed (genus 2) with one needle: a cap of sides 5.3e-7, 5.3e-7 and
+/// 1.06e-6 (height 6.5e-9, area 3.4e-15 against a bar of 2.6e-12) where the turned bar's faces
+/// meet the cylinder's; the needle pass leaves it (not traced yet).
+#[test]
+#[ignore = "open: needle — a cap 1.06e-6 long, 6.5e-9 high, left by the needle pass where a bar turned 9.6e-5 rad meets a cylinder"]
+fn needle_where_a_bar_turned_1e_4_rad_meets_a_cylinder() {
+    let path = format!(
+        "{}/tests/fuzz_findings/booleans/cylinder_less_bar_turned_1e-4_rad_needle.bin",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    replay_with(&std::fs::read(&path).unwrap(), false);
 }
 
 /// From the fork run (crash-33894a02…, 84 bytes): a unit cube turned 1e-7° less a box turned

@@ -40,7 +40,7 @@ impl Work {
                 t1,
                 t2,
             } => self.apply_collapse(from, to, at, t1, t2),
-            Op::Merge { vertices, at } => self.apply_merge(&vertices, at),
+            Op::Merge { vertices, at, cut } => self.apply_merge(&vertices, at, cut),
         }
     }
 

@@ -15,6 +15,13 @@
 //! shell of 1.5), each collapse and each three-corner merge folds a neighbour in the patch: the
 //! whole patch, its vertices joined by such edges ([`Work::cluster`]), merges at once, on the
 //! same condition.
+//!
+//! Where the triangles around the patch form an annulus instead, bounded by two simple cycles
+//! (the patch a *neck* between two cones whose apexes nearly meet, as on two spheres at one
+//! centre, one turned 1e-7°, 11 and 3 segments), merging would pinch the surface into one
+//! vertex of two cones. The neck is cut: each cycle gets its own apex, both at the
+//! volume-keeping point. The surface stays a closed 2-manifold, of genus one less or split into
+//! two shells, the two apexes at one place (as the cones' were within 10⁻⁹).
 
 use glam::DVec3;
 use smallvec::SmallVec;
@@ -100,12 +107,17 @@ impl Work {
             }
         }
         if self.shell_tris[self.shell[vertices[0] as usize] as usize] <= dying + 4
-            || !self.is_disk(&star)
-            || !self.link_is_cycle(&kept)
             || !self.link_holds_the_rest(vertices, &star, &kept)
         {
             return None;
         }
+        // A disk bounded by one cycle merges into one vertex; an annulus bounded by two (a
+        // neck, where two cones' apexes cross) is cut: one vertex, at the same place, per cycle.
+        let cut = match (self.euler(&star), self.link_cycles(&kept)?.1) {
+            (1, 1) => false,
+            (0, 2) if vertices.len() >= 2 => true,
+            _ => return None,
+        };
         let centroid = vertices
             .iter()
             .map(|&v| self.positions[v as usize])
@@ -134,6 +146,7 @@ impl Work {
             op: Op::Merge {
                 vertices: vertices.iter().copied().collect(),
                 at,
+                cut,
             },
         })
     }
@@ -153,9 +166,10 @@ impl Work {
         })
     }
 
-    /// The triangles `star` form a disk: V − E + F = 1 over their vertices and edges (the star
-    /// of a connected set on a closed 2-manifold, so no other surface is possible with it).
-    fn is_disk(&self, star: &[u32]) -> bool {
+    /// The Euler characteristic V − E + F of the triangles `star` over their vertices and
+    /// edges: 1 for a disk, 0 for an annulus (the star of a connected set on a closed
+    /// 2-manifold, so no other surface is possible with those).
+    fn euler(&self, star: &[u32]) -> i64 {
         let mut vertices: SmallVec<[u32; 32]> = SmallVec::new();
         let mut edges: SmallVec<[(u32, u32); 48]> = SmallVec::new();
         for &u in star {
@@ -171,36 +185,45 @@ impl Work {
                 }
             }
         }
-        vertices.len() as i64 - edges.len() as i64 + star.len() as i64 == 1
+        vertices.len() as i64 - edges.len() as i64 + star.len() as i64
     }
 
-    /// The link edges of the triangles that keep one corner form one simple cycle of at least
-    /// three vertices: each vertex starts one edge and ends one, and the walk covers them all.
-    fn link_is_cycle(&self, kept: &[(u32, u32)]) -> bool {
-        if kept.len() < 3 {
-            return false;
-        }
+    /// The link edges of the triangles that keep one vertex, split into simple cycles of at
+    /// least three vertices each (each vertex starts one edge and ends one): per kept triangle
+    /// its cycle's number, and how many cycles; `None` where the edges are not such cycles.
+    fn link_cycles(&self, kept: &[(u32, u32)]) -> Option<(SmallVec<[usize; 24]>, usize)> {
         let link: SmallVec<[(u32, u32); 24]> = kept
             .iter()
             .map(|&(u, v)| self.opposite_edge(u, v))
             .collect();
         for (i, &(a, b)) in link.iter().enumerate() {
             if link[..i].iter().any(|&(c, d)| c == a || d == b) {
-                return false;
+                return None;
             }
         }
-        let start = link[0].0;
-        let mut at = start;
-        for steps in 1..=link.len() {
-            let Some(&(_, next)) = link.iter().find(|&&(a, _)| a == at) else {
-                return false;
-            };
-            at = next;
-            if at == start {
-                return steps == link.len();
+        let mut label: SmallVec<[usize; 24]> = SmallVec::from_elem(usize::MAX, link.len());
+        let mut cycles = 0;
+        while let Some(first) = label.iter().position(|&l| l == usize::MAX) {
+            let start = link[first].0;
+            let (mut at, mut length) = (first, 0);
+            loop {
+                label[at] = cycles;
+                length += 1;
+                let next = link[at].1;
+                if next == start {
+                    break;
+                }
+                at = link.iter().position(|&(a, _)| a == next)?;
+                if label[at] != usize::MAX {
+                    return None;
+                }
             }
+            if length < 3 {
+                return None;
+            }
+            cycles += 1;
         }
-        false
+        Some((label, cycles))
     }
 
     /// Triangle `u`'s edge opposite its corner `v`, in its winding.
@@ -255,32 +278,50 @@ impl Work {
     }
 
     /// Merges `vertices` into their first, moved to `at`: every triangle holding two or more
-    /// of them is deleted, the others are relinked to the merged vertex.
-    pub(super) fn apply_merge(&mut self, vertices: &[u32], at: DVec3) -> Vec<u32> {
-        let keep = vertices[0];
+    /// of them is deleted, the others are relinked to the merged vertex. With `cut` (the link
+    /// two cycles, [`Work::plan_merge_of`]), those on the second cycle are relinked to the
+    /// second vertex, also moved to `at`.
+    pub(super) fn apply_merge(&mut self, vertices: &[u32], at: DVec3, cut: bool) -> Vec<u32> {
         let star = self.star(vertices);
+        let mut kept: SmallVec<[(u32, u32); 24]> = SmallVec::new();
+        for &u in &star {
+            let mut inside = self.tris[u as usize]
+                .into_iter()
+                .filter(|w| vertices.contains(w));
+            if let (Some(v), None) = (inside.next(), inside.next()) {
+                kept.push((u, v));
+            }
+        }
+        let labels = match cut {
+            true => self.link_cycles(&kept).map(|(labels, _)| labels),
+            false => None,
+        };
         for &u in &star {
             self.unlink(u);
         }
-        self.positions[keep as usize] = at;
-        let shell = self.shell[keep as usize] as usize;
+        self.positions[vertices[0] as usize] = at;
+        if cut {
+            self.positions[vertices[1] as usize] = at;
+        }
+        let shell = self.shell[vertices[0] as usize] as usize;
         for &u in &star {
-            let corners = self.tris[u as usize]
-                .iter()
-                .filter(|w| vertices.contains(w))
-                .count();
-            if corners >= 2 {
+            let Some(k) = kept.iter().position(|&(w, _)| w == u) else {
                 self.alive[u as usize] = false;
                 self.shell_tris[shell] -= 1;
                 continue;
-            }
+            };
+            let apex = vertices[labels.as_ref().map_or(0, |l| l[k])];
             for w in self.tris[u as usize].iter_mut() {
                 if vertices.contains(w) {
-                    *w = keep;
+                    *w = apex;
                 }
             }
             self.link(u);
         }
-        self.around[keep as usize].to_vec()
+        let mut changed = self.around[vertices[0] as usize].to_vec();
+        if cut {
+            changed.extend_from_slice(&self.around[vertices[1] as usize]);
+        }
+        changed
     }
 }

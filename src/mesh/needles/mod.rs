@@ -22,7 +22,8 @@
 //!   where that folds a neighbour too, the *cluster* of vertices joined to the speck's short
 //!   edge by edges below the speck length (a patch of specks where two cone apexes nearly
 //!   meet). Its condition is on the region it replaces: a disk whose boundary is one simple
-//!   cycle. Keeps the volume as a collapse does.
+//!   cycle, or an annulus bounded by two (a neck, cut: one vertex per cycle, both at the one
+//!   place). Keeps the volume as a collapse does.
 //! * **Stretch** a spike no flip or collapse can take (the tip of a thin wedge): one end of its
 //!   short edge moves away from the other along it, about the needle's height, until the
 //!   area is half again the threshold ([`Work::plan_stretch`]).
@@ -35,9 +36,10 @@
 //! needle face that nothing removes is deleted whole: its volume is below `NEEDLE_AREA · d³/3`
 //! (`Work::drop_tetrahedron`).
 //!
-//! None is taken where it would change topology or fold the surface: a flip needs the new
-//! edge not to exist already; a collapse needs the link condition (the two ends share exactly
-//! the two opposite vertices as neighbours) and a shell of more than four triangles; all need
+//! None is taken where it would change topology (but the cut of a neck narrower than a speck,
+//! which lowers the genus or splits the shell) or fold the surface: a flip needs the new edge
+//! not to exist already; a collapse needs the link condition (the two ends share exactly the
+//! two opposite vertices as neighbours) and a shell of more than four triangles; all need
 //! every new triangle to keep its orientation and have more than zero area. A needle that no
 //! operation can remove stays (the report still counts it).
 
@@ -276,10 +278,12 @@ enum Op {
         t1: u32,
         t2: u32,
     },
-    /// `vertices` (a triangle's corners, a cluster) into one vertex at `at`.
+    /// `vertices` (a triangle's corners, a cluster) into one vertex at `at`; with `cut`, into
+    /// two there, one per cycle of the link.
     Merge {
         vertices: SmallVec<[u32; 8]>,
         at: DVec3,
+        cut: bool,
     },
     /// Vertex `v` to `at`.
     Move { v: u32, at: DVec3 },
