@@ -126,6 +126,32 @@ pub(crate) fn key(p: DVec3) -> [u64; 3] {
     ]
 }
 
+/// Helpers for tests of how keys spread over a table's buckets.
+#[cfg(test)]
+pub(crate) mod test_support {
+    /// A linear congruential generator from `state`: each call steps it and returns the new
+    /// state (Knuth's MMIX constants), the same numbers in every test that asks for a seed.
+    pub(crate) fn lcg(mut state: u64) -> impl FnMut() -> u64 {
+        move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            state
+        }
+    }
+
+    /// Pairs of `hashes` a table of `buckets` (a power of two) starts probing at the same
+    /// bucket: the work that collisions add to a map. A table whose keys spread has about
+    /// `n² / 2·buckets` of them; one flooded into a bucket, `n² / 2`, each a longer probe.
+    pub(crate) fn bucket_collisions(hashes: impl Iterator<Item = u64>, buckets: usize) -> u64 {
+        let mut count = vec![0u64; buckets];
+        for h in hashes {
+            count[(h as usize) & (buckets - 1)] += 1;
+        }
+        count.iter().map(|&c| c * c.saturating_sub(1) / 2).sum()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use std::collections::HashSet;

@@ -524,6 +524,8 @@ mod tests {
     #[test]
     fn crafted_edges_spread_in_the_edge_owner_map_like_random_ones() {
         use std::hash::BuildHasher;
+
+        use crate::hash::test_support::{bucket_collisions, lcg};
         const N: usize = 1024;
         let buckets = (3 * N * 8 / 7).next_power_of_two();
         let mask = (buckets - 1) as u64;
@@ -533,24 +535,10 @@ mod tests {
             .filter(|e| fx.hash_one(e) & mask == 0)
             .take(N)
             .collect();
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let random: Vec<(u32, u32)> = (0..N)
-            .map(|_| {
-                state = state
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                (1, (state >> 40) as u32)
-            })
-            .collect();
+        let mut next = lcg(0x9e37_79b9_7f4a_7c15);
+        let random: Vec<(u32, u32)> = (0..N).map(|_| (1, (next() >> 40) as u32)).collect();
         let collisions = |edges: &[(u32, u32)], hash: &dyn Fn(&(u32, u32)) -> u64| {
-            let mut count = vec![0u64; buckets];
-            for e in edges {
-                count[(hash(e) & mask) as usize] += 1;
-            }
-            count
-                .iter()
-                .map(|&c| c * c.saturating_sub(1) / 2)
-                .sum::<u64>()
+            bucket_collisions(edges.iter().map(hash), buckets)
         };
         let owners =
             super::EdgeOwners::with_capacity_and_hasher(3 * N, crate::hash::KeyedBuild::default());

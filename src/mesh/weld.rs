@@ -192,6 +192,7 @@ mod tests {
 
     use super::*;
     use crate::hash::FxBuild;
+    use crate::hash::test_support::{bucket_collisions, lcg};
 
     /// The cell floor agrees with the library's floor, saturation and NaN included.
     #[test]
@@ -217,28 +218,15 @@ mod tests {
             -f64::MIN_POSITIVE,
             -(2f64.powi(63)),
         ];
-        let mut s = 7u64;
+        let mut next = lcg(7);
         for _ in 0..1000 {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
+            let s = next();
             xs.push(f64::from_bits(s));
             xs.push((s >> 11) as f64 / (1u64 << 40) as f64 - 4096.0);
         }
         for x in xs {
             assert_eq!(floor(x), x.floor() as i64, "{x}");
         }
-    }
-
-    /// Pairs of keys a table of `buckets` (a power of two) starts probing at the same bucket:
-    /// the work that collisions add to welding. A table whose keys spread has about
-    /// `n² / 2·buckets` of them; one flooded into a bucket, `n² / 2`, each a longer probe.
-    fn bucket_collisions(hashes: impl Iterator<Item = u64>, buckets: usize) -> u64 {
-        let mut count = vec![0u64; buckets];
-        for h in hashes {
-            count[(h as usize) & (buckets - 1)] += 1;
-        }
-        count.iter().map(|&c| c * c.saturating_sub(1) / 2).sum()
     }
 
     /// Issue 12 item 8: positions crafted so that the crate's former unkeyed position hash
@@ -272,14 +260,9 @@ mod tests {
                 crafted.push(DVec3::new(1.0, 2.0, z));
             }
         }
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = lcg(0x9e37_79b9_7f4a_7c15);
         let random: Vec<DVec3> = (0..N)
-            .map(|_| {
-                state = state
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                DVec3::new(1.0, 2.0, f64::from_bits(3.0f64.to_bits() + (state >> 24)))
-            })
+            .map(|_| DVec3::new(1.0, 2.0, f64::from_bits(3.0f64.to_bits() + (next() >> 24))))
             .collect();
         let collisions = |points: &[DVec3], build: &dyn Fn(DVec3) -> u64| {
             bucket_collisions(points.iter().map(|&p| build(p)), buckets)
@@ -344,15 +327,8 @@ mod tests {
         let delta = 0.5;
         let at = |z: i64| DVec3::new(1.5, 2.5, z as f64 + 0.5);
         let crafted: Vec<DVec3> = crafted.into_iter().map(at).collect();
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let random: Vec<DVec3> = (0..N)
-            .map(|_| {
-                state = state
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                at((state >> 40) as i64)
-            })
-            .collect();
+        let mut next = lcg(0x9e37_79b9_7f4a_7c15);
+        let random: Vec<DVec3> = (0..N).map(|_| at((next() >> 40) as i64)).collect();
         let fx = FxBuild::default();
         let cells = |points: &[DVec3]| -> Vec<[i64; 3]> {
             points.iter().map(|&p| cell_of(p, 2.0 * delta)).collect()

@@ -247,6 +247,7 @@ mod tests {
     use glam::DVec3;
 
     use super::{Cells, Grid};
+    use crate::hash::test_support::lcg;
 
     /// The least time of a few builds of the grid of `spots` (cells `cell` wide).
     fn build_time(spots: &[DVec3], cell: f64) -> Duration {
@@ -262,13 +263,9 @@ mod tests {
     }
 
     /// Numbers in [0, 1) from a linear congruential generator seeded with `seed`.
-    fn unit_numbers(mut seed: u64) -> impl FnMut() -> f64 {
-        move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        }
+    fn unit_numbers(seed: u64) -> impl FnMut() -> f64 {
+        let mut next = lcg(seed);
+        move || (next() >> 11) as f64 / (1u64 << 53) as f64
     }
 
     /// Points on one plane of constant `z` (an extrusion's caps) build a sparse grid as fast
