@@ -114,7 +114,7 @@ impl Work {
             if merges.is_none()
                 && let Some(cluster) = self.cluster(t)
             {
-                consider(&mut merges, self.plan_merge_of(&cluster));
+                consider(&mut merges, self.plan_merge_of(&cluster, true));
             }
         }
         let best = if short_edge {

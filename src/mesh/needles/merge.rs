@@ -36,7 +36,7 @@ const CLUSTER_VERTICES: usize = 16;
 impl Work {
     /// Merging the corners of triangle `t` into one vertex (see [`Work::plan_merge_of`]).
     pub(super) fn plan_merge(&self, t: u32) -> Option<Plan> {
-        self.plan_merge_of(&self.tris[t as usize])
+        self.plan_merge_of(&self.tris[t as usize], false)
     }
 
     /// The vertices joined to needle `t`'s shortest edge's ends by edges below the speck length
@@ -84,8 +84,10 @@ impl Work {
     /// move and the operation, if the triangles around them form a disk whose boundary is one
     /// simple cycle through every other vertex of theirs, and every triangle that stays keeps
     /// its orientation and area. The merged vertex is put where the volume is kept, from
-    /// whichever of the vertices and their centroid moves the surface least.
-    pub(super) fn plan_merge_of(&self, vertices: &[u32]) -> Option<Plan> {
+    /// whichever of the vertices and their centroid moves the surface least. Where they form
+    /// an annulus instead and `neck` is set (a cluster: every edge in it below the speck
+    /// length), the neck is cut: one vertex per boundary cycle, both at that place.
+    pub(super) fn plan_merge_of(&self, vertices: &[u32], neck: bool) -> Option<Plan> {
         let star = self.star(vertices);
         // The triangles that keep one vertex, as (triangle, its vertex); the link edges are
         // theirs opposite that vertex. Those with two or more vanish.
@@ -115,7 +117,7 @@ impl Work {
         // neck, where two cones' apexes cross) is cut: one vertex, at the same place, per cycle.
         let cut = match (self.euler(&star), self.link_cycles(&kept)?.1) {
             (1, 1) => false,
-            (0, 2) if vertices.len() >= 2 => true,
+            (0, 2) if neck => true,
             _ => return None,
         };
         let centroid = vertices
@@ -292,10 +294,12 @@ impl Work {
                 kept.push((u, v));
             }
         }
-        let labels = match cut {
-            true => self.link_cycles(&kept).map(|(labels, _)| labels),
-            false => None,
-        };
+        // The plan found the two cycles on this same star just before.
+        let labels = cut.then(|| {
+            self.link_cycles(&kept)
+                .expect("a planned cut has two link cycles")
+                .0
+        });
         for &u in &star {
             self.unlink(u);
         }
