@@ -109,8 +109,8 @@ pub enum Error {
         eps: f64,
     },
 
-    /// A boolean stopped at its work budget: its clipping cut the polygons into pieces with
-    /// more corners than [`MAX_BOOLEAN_WORK`](crate::MAX_BOOLEAN_WORK) allows (or
+    /// A boolean stopped at its work budget: building its trees and clipping cut the polygons
+    /// into pieces with more corners than [`MAX_BOOLEAN_WORK`](crate::MAX_BOOLEAN_WORK) allows (or
     /// [`WORK_PER_POLYGON`](crate::WORK_PER_POLYGON) per polygon of large operands; see
     /// [`Solid::check_budget`](crate::Solid::check_budget)). It happens where faces of
     /// different operands nearly coincide over a wide area. Remedy: move such parts apart, or
@@ -148,10 +148,11 @@ pub enum Error {
     /// passing on a wrong result, a fault of the kernel on hard input. Remedy as for
     /// [`Error::BrokenResult`].
     #[error(
-        "the result's mesh bounds a volume of {mesh:e} where the solid's polygons bound \
-         {polygons:e}, more than the {bound:e} its repair may change; the repair went wrong on \
-         this input: move or scale the operands slightly (the fault lies where nearly \
-         coincident features meet), or report the input"
+        "the result's mesh bounds a volume of {mesh:.6e} where the solid's polygons bound \
+         {polygons:.6e}: they differ by {diff:.3e}, more than the {bound:.3e} its repair may \
+         change; the repair went wrong on this input: move or scale the operands slightly (the \
+         fault lies where nearly coincident features meet), or report the input",
+        diff = (.mesh - .polygons).abs()
     )]
     WrongVolume {
         /// The mesh's volume.

@@ -52,8 +52,9 @@ impl<'a> Surface<'a> {
 
     /// For each polygon of this surface and of `other`, whether it comes within `margin` of one
     /// of the other's polygons: their boxes do, and neither lies wholly beyond the other's plane
-    /// by more than that and [`NEAR_GAP`] tolerances (see [`beyond`]). Box overlap alone kept 2,974 of rocker-arm's 20,088
-    /// triangles near the moved copy; the planes leave about 1,200 (the band a cut crosses).
+    /// by more than that and [`NEAR_GAP`] tolerances (see [`beyond`]). Box overlap alone kept
+    /// 2,974 of rocker-arm's 20,088 triangles near the moved copy; the planes leave about 1,200
+    /// (the band a cut crosses).
     ///
     /// One descent of both hierarchies together ([`Bvh::visit_pairs_within`]), in parallel over
     /// pieces of this one: walking `other`'s from its root once per leaf of this one entered

@@ -56,9 +56,9 @@ impl std::fmt::Display for BoolOp {
 pub const MAX_BOOLEAN_WORK: u64 = 1 << 24;
 
 /// The work a boolean may do per polygon of its operands, where that is more than
-/// [`MAX_BOOLEAN_WORK`] (operands of over half a million polygons): ordinary booleans cut up
-/// to about 8 corners per polygon (rocker-arm ∪ moved: 0.32 M for 40 k), so large inputs
-/// stay well within it.
+/// [`MAX_BOOLEAN_WORK`] (operands of over half a million polygons): ordinary booleans cut a
+/// few corners per polygon, building and clipping (rocker-arm ∪ moved: 0.25 M for 40 k), so
+/// large inputs stay well within it.
 pub const WORK_PER_POLYGON: u64 = 32;
 
 /// The meter of a boolean (or an n-ary reduction) over operands of `polygons` polygons in all.

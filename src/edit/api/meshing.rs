@@ -14,7 +14,9 @@ use crate::sdf::{BakeOptions, Scene, TessellationOptions};
 /// The largest mesh the mesh view is sent (triangles); larger ones are reported, not drawn.
 const MAX_VIEW_TRIANGLES: usize = 2_000_000;
 
-/// The request's scene, meshed by its route, and the seconds that took.
+/// The request's scene, meshed by its route, and the seconds that took. By the BSP route a
+/// closed (or empty) mesh that bounds another volume than the scene's solid is an error, as on
+/// the command line ([`crate::Solid::check_mesh_volume`]).
 pub(super) fn scene_mesh(m: &Map<String, Value>) -> Answer<(Scene, Mesh, f64)> {
     let scene =
         Scene::from_json_value(field(m, "document")?).map_err(|e| from_error(e, "$.document"))?;
@@ -33,7 +35,13 @@ pub(super) fn scene_mesh(m: &Map<String, Value>) -> Answer<(Scene, Mesh, f64)> {
                 cell,
                 ..TessellationOptions::default()
             })
-            .map(|s| s.to_mesh())
+            .and_then(|solid| {
+                let mesh = solid.to_mesh();
+                if mesh.is_empty() || mesh.report().is_closed_manifold() {
+                    solid.check_mesh_volume(&mesh)?;
+                }
+                Ok(mesh)
+            })
     }
     .map_err(|e| from_error(e, "$.document"))?;
     Ok((scene, mesh, start.elapsed().as_secs_f64()))
