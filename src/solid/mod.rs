@@ -75,8 +75,7 @@ pub(crate) struct PrecisionLoss {
 }
 
 /// A boolean stopped by its work meter: the corners of the pieces its tree builds and clipping
-/// had cut (with
-/// those of the other booleans sharing the meter) when it stopped, and the limit.
+/// had cut (with those of the other booleans sharing the meter) when it stopped, and the limit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Overrun {
     pub(crate) work: u64,
