@@ -973,3 +973,21 @@ fn union_with_a_bar_below_its_larger_operand() {
 fn union_with_a_cylinder_below_its_larger_operand() {
     replay_fork("c88c23a3");
 }
+
+/// From the round-21 CI-mode run (tiny rotations off; crash-deed344d…, minimised to 47 bytes):
+/// a 0.25 × 0.125 × 0.125 box at (−0.5, −0.5, −0.5) united with a 0.125 × 1.375 × 1.375 box at
+/// (−0.375, −0.5, −0.5), then with a 0.125 × 1.375 × 0.5 box turned 9.6e-5 rad. Between the
+/// second box's −x face and the turned box's +x face lies a wedge-shaped slit, 3.2e-10 wide
+/// where it ends on the first box's −y face in a needle 9.4e-6 long. Step 1's mesh had volume
+/// 0.32323803083746, 4.8e-9 below the solid's 0.32323803567004 (exact: 0.323238035670042):
+/// no collapse closed the slit's tip (the link condition refused it, the collapse turning two
+/// triangles across the slit into a fin pair), so the needle pass stretched the needle across
+/// the slit by 1.24e-6, widening it over the turned face.
+#[test]
+fn union_slit_tip_needle_turned_1e_4_rad_loses_volume() {
+    let path = format!(
+        "{}/tests/fuzz_findings/booleans/union_slit_tip_needle_turned_1e-4_rad.bin",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    replay_with(&std::fs::read(&path).unwrap(), false);
+}

@@ -39,7 +39,8 @@ impl Work {
                 at,
                 t1,
                 t2,
-            } => self.apply_collapse(from, to, at, t1, t2),
+                cap,
+            } => self.apply_collapse(from, to, at, [t1, t2], cap),
             Op::Merge { vertices, at, cut } => self.apply_merge(&vertices, at, cut),
         }
     }

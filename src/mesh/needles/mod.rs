@@ -16,7 +16,11 @@
 //! * **Collapse** the needle's shortest edge `pq`, moving `p` onto `q` and deleting the two
 //!   triangles beside it; where that would change the volume, `q` moves off its place along
 //!   the fan's normal by what puts it back (a collapse keeps the volume). The surface moves by
-//!   about `|pq|`. Taken when the needle has a short edge (a *spike* or a speck).
+//!   about `|pq|`. Taken when the needle has a short edge (a *spike* or a speck). At the tip of
+//!   a slit narrower than a needle, where `p` and `q` share one more neighbour `w` through a
+//!   vertex `o` of valence three on the edge (`o`'s other two triangles, one on each face of
+//!   the slit, would become one triangle both ways round), it deletes that pair and `o` too
+//!   ([`Work::slit_tip`]): the slit's tip closes, the volume within `|pq|` of its faces.
 //! * **Merge** a speck's three corners into one vertex where no single edge may collapse
 //!   (`merge.rs`): between flat slivers that share its edges, or on a vertex of valence three;
 //!   where that folds a neighbour too, the *cluster* of vertices joined to the speck's short
@@ -39,9 +43,12 @@
 //! None is taken where it would change topology (but the cut of a neck narrower than a speck,
 //! which lowers the genus or splits the shell) or fold the surface: a flip needs the new edge
 //! not to exist already; a collapse needs the link condition (the two ends share exactly the
-//! two opposite vertices as neighbours) and a shell of more than four triangles; all need
-//! every new triangle to keep its orientation and have more than zero area. A needle that no
-//! operation can remove stays (the report still counts it).
+//! two opposite vertices as neighbours) and a shell of more than four triangles, or, at a
+//! slit's tip, that `o` has valence three and the ends share exactly the two opposite
+//! vertices and `w`, and a shell of eight or more (deleting `o`'s triangles makes one
+//! `(p, q, w)` of three, a disk for a disk, whose edge `pq` then meets the link condition: the
+//! topology is kept); all need every new triangle to keep its orientation and have more than
+//! zero area. A needle that no operation can remove stays (the report still counts it).
 
 mod collapse;
 mod fix;
@@ -270,13 +277,15 @@ enum Op {
         new_t: [u32; 3],
         new_u: [u32; 3],
     },
-    /// `from` onto `to`, which moves to `at`.
+    /// `from` onto `to`, which moves to `at`; at a slit's tip, deleting the `cap` pair too
+    /// ([`Work::slit_tip`]).
     Collapse {
         from: u32,
         to: u32,
         at: DVec3,
         t1: u32,
         t2: u32,
+        cap: Option<[u32; 2]>,
     },
     /// `vertices` (a triangle's corners, a cluster) into one vertex at `at`; with `cut`, into
     /// two there, one per cycle of the link.

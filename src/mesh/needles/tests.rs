@@ -243,3 +243,144 @@ f 8 9 29
 f 4 8 29
 f 5 4 29
 ";
+
+/// Where a box's face and another box's face turned 9.6e-5 rad nearly touch (the fuzz input
+/// `union_slit_tip_needle_turned_1e-4_rad`, step 1, as it enters the pass): a slit between
+/// them, 3.2e-10 wide where it ends on a third box's face in a needle 9.4e-6 long (vertices 15,
+/// 16, 17 here, 1-based), whose apex 17 has valence three. The needle's short edge 15–16 fails
+/// the link condition (its ends share 17, 21 and 28): the collapse would turn 17's two other
+/// triangles (32 and 56), one on each face of the slit, into one triangle both ways round. The
+/// collapse (either way) deletes them with 17, closing the slit's tip, and keeps the volume
+/// and the topology; stretching the needle instead widened the slit by 4.8e-9 of volume.
+#[test]
+fn a_slit_tip_closes_by_a_collapse_deleting_its_apex() {
+    let mut mesh = read(SLIT_TIP);
+    let before = mesh.report();
+    assert!(
+        before.is_closed_manifold() && before.needles > 0,
+        "{before}"
+    );
+    let work = super::work::Work::new(mesh.clone(), f64::INFINITY);
+    assert!(matches!(
+        work.plan(10),
+        Some(super::Op::Collapse {
+            from: 14 | 15,
+            to: 14 | 15,
+            cap: Some([31 | 55, 31 | 55]),
+            ..
+        })
+    ));
+    removes_every_needle_keeping_the_volume(&mut mesh);
+    let after = mesh.report();
+    assert_eq!(
+        (after.shells.len(), after.genus),
+        (before.shells.len(), before.genus)
+    );
+}
+
+const SLIT_TIP: &str = "
+v -3.125e-1 -1.1875e0 1.875e-1
+v -3.125e-1 -1.1875e0 -1.1875e0
+v -3.125e-1 1.875e-1 -1.1875e0
+v -3.125e-1 1.875e-1 1.875e-1
+v -6.25e-1 -4.375e-1 -5.625e-1
+v -6.25e-1 -5.625e-1 -5.625e-1
+v -6.25e-1 -5.625e-1 -4.375e-1
+v -6.25e-1 -4.375e-1 -4.375e-1
+v -4.375e-1 -1.1875e0 -1.1875e0
+v -4.375e-1 1.875e-1 -1.1875e0
+v -4.375e-1 1.875e-1 1.875e-1
+v -4.375e-1 -1.1875e0 1.875e-1
+v -5.625000004596581e-1 -5.625e-1 -5.625e-1
+v -5.624957822476947e-1 -5.625e-1 -4.375e-1
+v -4.375000003173378e-1 -5.625e-1 -5.625e-1
+v -4.375e-1 -5.625e-1 -5.625e-1
+v -4.375e-1 -5.625e-1 -5.624905961987774e-1
+v -5.624999996826622e-1 -4.375e-1 -4.375e-1
+v -5.625042178946255e-1 -4.375e-1 -5.625e-1
+v -4.375e-1 -4.375e-1 -4.3751362123664117e-1
+v -4.375e-1 -4.375e-1 -5.625e-1
+v -4.375042177523052e-1 -4.375e-1 -5.625e-1
+v -4.375e-1 -1.1875e0 -7.499449397086122e-1
+v -4.375e-1 -1.1875e0 -5.253275255690423e-1
+v -4.3747765903740704e-1 -1.1875e0 -5.253365909299998e-1
+v -4.3748523860241484e-1 -1.1875e0 -7.499449402067044e-1
+v -4.375e-1 -2.499747357518016e-1 -2.50022899198896e-1
+v -4.375e-1 -7.500252646744756e-1 -7.49981318662324e-1
+v -4.375e-1 -1.187477100407468e0 -2.4994493959946196e-1
+v -5.625316334727665e-1 1.8747709934017087e-1 -7.500550593330445e-1
+v -5.62514762027813e-1 1.8751867768816177e-1 -2.5005506134644917e-1
+v -4.3751476217013335e-1 1.8752289512312448e-1 -2.500592795584077e-1
+v -4.375316336150868e-1 1.8748131677513347e-1 -7.50059277545003e-1
+v -5.624683663849133e-1 -1.1874813167751335e0 -2.49940722454997e-1
+v -5.624852378298667e-1 -1.1875228951231245e0 -7.499407204415923e-1
+v -4.3748523797218697e-1 -1.1875186776881619e0 -7.499449386535508e-1
+f 1 2 3
+f 3 4 1
+f 5 6 7
+f 7 8 5
+f 2 9 10
+f 10 3 2
+f 11 12 1
+f 1 4 11
+f 13 14 7
+f 6 13 7
+f 15 16 17
+f 8 18 19
+f 5 8 19
+f 20 21 22
+f 19 13 6
+f 6 5 19
+f 15 22 21
+f 21 16 15
+f 7 14 18
+f 7 18 8
+f 23 9 2
+f 1 12 24
+f 1 24 25
+f 2 1 25
+f 2 25 26
+f 2 26 23
+f 3 10 11
+f 11 4 3
+f 27 11 10
+f 21 27 10
+f 16 21 10
+f 28 17 16
+f 28 16 10
+f 28 10 9
+f 28 9 23
+f 11 27 29
+f 11 29 12
+f 29 24 12
+f 27 21 20
+f 30 31 32
+f 30 32 33
+f 13 19 30
+f 34 14 13
+f 13 30 35
+f 34 13 35
+f 31 30 19
+f 31 19 18
+f 31 18 14
+f 31 14 34
+f 36 26 25
+f 33 32 27
+f 33 27 20
+f 33 20 22
+f 28 33 22
+f 28 22 15
+f 15 17 28
+f 35 36 25
+f 24 29 34
+f 24 34 35
+f 35 25 24
+f 23 26 36
+f 30 33 28
+f 35 30 28
+f 35 28 23
+f 35 23 36
+f 27 32 31
+f 34 29 27
+f 31 34 27
+";
