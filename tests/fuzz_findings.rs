@@ -714,9 +714,19 @@ fn replay_fork(hash: &str) {
 /// needle): the patch at the pole, 6 vertices within 9.8e-10, is a neck between the two cones,
 /// the triangles around it an annulus; merged it would pinch the surface. It is cut, one apex
 /// per boundary cycle, both at the volume-keeping point.
-const FORK_PASSING: [&str; 14] = [
-    "0948e42e", "1aeb92c4", "4c4a25bc", "4ff3cfe7", "69eb964a", "75ca2fd2", "7b9f78bf", "967a3be9",
-    "cf177d2c", "d6e249f8", "e72a4a41", "ea6f2083", "ec4e381d", "f33d6823",
+///
+/// Passing since near polygons are those within the margin of the other operand's planes, not
+/// only of its boxes (b7a8df4, with the gap of 35af034): a polygon whose box meets the other's
+/// but which lies wholly beyond its plane is classified whole, not cut by its tree (failing at
+/// 6a0e4eb, before those; the polygons concerned not traced one by one):
+///
+/// - 1037da39 (cylinders, one turned 1e-9°, ∩ an OBJ slab): step 1 not closed.
+/// - f4856d6f (cylinder ∪ cuboid turned 1e-7°, ∩ cube turned 1e-7°, ∪, −): step 3 not closed.
+/// - f5c69f47 (cube ∪ slab turned 1e-7°, ∪ sphere, − two boxes): step 3 mesh 4.8e-5 off.
+const FORK_PASSING: [&str; 17] = [
+    "0948e42e", "1037da39", "1aeb92c4", "4c4a25bc", "4ff3cfe7", "69eb964a", "75ca2fd2", "7b9f78bf",
+    "967a3be9", "cf177d2c", "d6e249f8", "e72a4a41", "ea6f2083", "ec4e381d", "f33d6823", "f4856d6f",
+    "f5c69f47",
 ];
 
 /// Replays every input in `hashes` of the fork run kept in `run` (`round17_fork`,
@@ -804,12 +814,39 @@ fn the_round_18_fork_run_near_coplanar_inputs() {
 /// its own below, and 62f4302a (an OBJ box turned 1e-8° united with a cylinder turned 1e-7°, a
 /// bar turned 1e-2° and a cylinder: step 2 a flat closed shell), closed since the fill takes a
 /// flap of several triangles away whole.
-const FORK_18_PASSING: [&str; 3] = ["62f4302a", "a03b7e97", "b153683f"];
+///
+/// Passing since near polygons are chosen by the other operand's planes (b7a8df4, 35af034; see
+/// [`FORK_PASSING`]), each failing at 6a0e4eb before those:
+///
+/// - 02530f35 (box turned 1e-8° ∪ sphere − sphere − sphere): step 1 not closed.
+/// - 0827a164 (cube turned freely ∪ OBJ box ∪ sphere turned 1e-9° ∩ sphere): step 2 mesh 2.9e-8
+///   off.
+/// - 3cc49f00 (OBJ box ∪ OBJ box turned 1e-5°, − cylinder, − box, ∩ box): step 1 not closed.
+/// - 5179ded6 (OBJ slab turned 1e-8° ∪ OBJ box, − two cubes, ∪ bar): step 2 mesh 6.8e-4 off.
+/// - 523bd25f (3-segment spheres at one centre, one turned 1e-9°, ∪ cylinder, −, ∪): step 3
+///   not closed.
+/// - 540b19a9 (cylinder ∪ cube turned 1e-6° ∪ bar ∪ cylinder): step 2 not closed.
+/// - 8114e14d (3-segment spheres, one turned 1e-5°, ∪ sphere turned 1e-8°, ∪): step 1 not closed.
+/// - a08947f3 (cylinder − sphere turned 1e-5° ∩ sphere turned 1e-5°, ∪ box): step 1 closed with
+///   needles in 12 sliver shells.
+/// - b0b42816 (slab turned 1e-8° ∪ four spheres): step 2 not closed.
+/// - be4ad59a (cylinder turned 1e-5° ∩ three spheres turned 1e-5°): step 1 mesh 4e-9 off.
+/// - ca3a7ad3 (3-segment spheres, one turned 1e-10°, − bar, ∪ sphere): step 3 mesh 1.3e-3 off.
+/// - dd18b60b (slab ∪ sphere − sphere ∪ sphere turned 1e-4°, ∪): step 2 not closed.
+/// - e8b2a516 (cylinder turned 1e-9° ∪ sphere ∪ box ∪ bar ∪ cylinder): step 3 not closed.
+const FORK_18_PASSING: [&str; 16] = [
+    "02530f35", "0827a164", "3cc49f00", "5179ded6", "523bd25f", "540b19a9", "62f4302a", "8114e14d",
+    "a03b7e97", "a08947f3", "b0b42816", "b153683f", "be4ad59a", "ca3a7ad3", "dd18b60b", "e8b2a516",
+];
 
 /// The inputs of the round-18 fork run that pass now without a test of their own.
 #[test]
 fn the_round_18_fork_run_inputs_that_pass() {
-    let failures = fork_failures("round18_fork", &["62f4302a"]);
+    let own: Vec<&str> = FORK_18_PASSING
+        .into_iter()
+        .filter(|h| !["a03b7e97", "b153683f"].contains(h))
+        .collect();
+    let failures = fork_failures("round18_fork", &own);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
