@@ -1,6 +1,7 @@
 //! The one boolean operation, by the csg.js rules; the named wrappers, operators and n-ary
 //! reductions on top of it are in `ops.rs`.
 
+use std::borrow::Cow;
 use std::sync::Arc;
 
 use glam::DVec3;
@@ -113,7 +114,13 @@ impl std::str::FromStr for BoolOp {
 #[must_use]
 pub fn boolean(a: &Solid, b: &Solid, op: BoolOp) -> Solid {
     let meter = meter_for(a.polygon_count() + b.polygon_count());
-    boolean_owned(a.clone(), b.clone(), op, &meter)
+    boolean_at_least(
+        Cow::Borrowed(a),
+        Cow::Borrowed(b),
+        op,
+        Tolerance::new(0.0),
+        &meter,
+    )
 }
 
 /// [`boolean`] with a tolerance of at least `tolerance`: the boolean uses the larger of it and
@@ -141,12 +148,12 @@ pub fn boolean(a: &Solid, b: &Solid, op: BoolOp) -> Solid {
 #[must_use]
 pub fn boolean_with(a: &Solid, b: &Solid, op: BoolOp, tolerance: Tolerance) -> Solid {
     let meter = meter_for(a.polygon_count() + b.polygon_count());
-    boolean_at_least(a.clone(), b.clone(), op, tolerance, &meter)
+    boolean_at_least(Cow::Borrowed(a), Cow::Borrowed(b), op, tolerance, &meter)
 }
 
 /// [`boolean`] on owned operands, charging the pieces it cuts to `meter`.
 pub(super) fn boolean_owned(a: Solid, b: Solid, op: BoolOp, meter: &Meter) -> Solid {
-    boolean_at_least(a, b, op, Tolerance::new(0.0), meter)
+    boolean_at_least(Cow::Owned(a), Cow::Owned(b), op, Tolerance::new(0.0), meter)
 }
 
 /// The mark of a boolean whose `meter` is past its limit.
@@ -163,7 +170,15 @@ fn overran(a: &Solid, b: &Solid, meter: &Meter) -> Option<Solid> {
     overrun.map(Solid::overran)
 }
 
-fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance, meter: &Meter) -> Solid {
+/// The operands are borrowed where the caller keeps them: their polygons are cloned only as
+/// the boolean keeps or clips them, not first as a whole.
+fn boolean_at_least(
+    a: Cow<'_, Solid>,
+    b: Cow<'_, Solid>,
+    op: BoolOp,
+    floor: Tolerance,
+    meter: &Meter,
+) -> Solid {
     if let Some(marked) = overran(&a, &b, meter) {
         return marked;
     }
@@ -176,7 +191,7 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance, meter: &Me
     // Inherited first, so the first loss on the way is the one reported.
     let inherited = a.precision_loss().or(b.precision_loss());
     if a.is_empty() || b.is_empty() || !box_a.overlaps(&box_b, eps) {
-        return disjoint(a, b, op, floor.eps(), inherited);
+        return disjoint(a.into_owned(), b.into_owned(), op, floor.eps(), inherited);
     }
     // A tolerance asked for by the caller is not a loss; one forced by the coordinates'
     // magnitude or carried from a larger boolean is, where it dwarfs the region.
@@ -185,8 +200,8 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance, meter: &Me
     // its far part can be passed on indexed; cut down, it has T-junctions.
     let flat = WELD_TOLERANCES * eps;
     let (a_exact, b_exact) = (a.carried_eps() == 0.0, b.carried_eps() == 0.0);
-    let (a, a_ids) = a.into_parts();
-    let (b, b_ids) = b.into_parts();
+    let (a, a_ids) = parts(a);
+    let (b, b_ids) = parts(b);
     let (a, a_cut) = cut_down(a, &box_b, eps);
     let (b, b_cut) = cut_down(b, &box_a, eps);
     // Beside a huge operand neither is indexed: the cross-check's huge-box case (Cray) came out
@@ -248,6 +263,17 @@ fn boolean_at_least(a: Solid, b: Solid, op: BoolOp, floor: Tolerance, meter: &Me
     Solid::with_eps(polygons, eps, lost).with_index(index)
 }
 
+/// A solid's polygons, borrowed where the solid is, and its vertex ids.
+fn parts(solid: Cow<'_, Solid>) -> (Cow<'_, [Polygon]>, Option<Arc<VertexIds>>) {
+    match solid {
+        Cow::Borrowed(s) => (Cow::Borrowed(&s.polygons), s.vertex_ids.clone()),
+        Cow::Owned(s) => {
+            let (polygons, ids) = s.into_parts();
+            (Cow::Owned(polygons), ids)
+        }
+    }
+}
+
 /// A polygon whose box is this many times the other operand's is cut down first.
 const HUGE: f64 = 16.0;
 
@@ -261,7 +287,7 @@ const HUGE: f64 = 16.0;
 /// pieces far away that are classified whole.
 ///
 /// Also says whether anything was cut.
-fn cut_down(polys: Vec<Polygon>, other: &Aabb, eps: f64) -> (Vec<Polygon>, bool) {
+fn cut_down<'a>(polys: Cow<'a, [Polygon]>, other: &Aabb, eps: f64) -> (Cow<'a, [Polygon]>, bool) {
     let reach = HUGE * other.diagonal();
     if !polys.iter().any(|p| p.bbox().diagonal() > reach) {
         return (polys, false);
@@ -275,7 +301,7 @@ fn cut_down(polys: Vec<Polygon>, other: &Aabb, eps: f64) -> (Vec<Polygon>, bool)
         planes.push(Plane::through(n * frame.max[axis], -n));
     }
     let mut out = Vec::with_capacity(polys.len());
-    for p in polys {
+    for p in polys.into_owned() {
         if p.bbox().diagonal() <= reach || !p.bbox().overlaps(&frame, 0.0) {
             out.push(p);
             continue;
@@ -295,7 +321,7 @@ fn cut_down(polys: Vec<Polygon>, other: &Aabb, eps: f64) -> (Vec<Polygon>, bool)
         }
         out.extend(inside);
     }
-    (out, true)
+    (Cow::Owned(out), true)
 }
 
 /// The polygons near the other surface, the ones clipped, each edge knowing its neighbour's

@@ -32,6 +32,9 @@ pub(crate) struct VertexIds {
     least_fan: f64,
     /// Made when first asked: only an operand passed on indexed needs it.
     around: OnceLock<Around>,
+    /// Per vertex, a floor under the distance at which two polygons around it could be merged
+    /// as coplanar (see [`merge_floors`]), where made (a solid read from a mesh).
+    merge_floor: Option<Vec<f64>>,
 }
 
 /// The polygons around vertex `v` are `list[at[v]..at[v + 1]]`, ascending (a polygon with a
@@ -65,6 +68,7 @@ impl VertexIds {
             fans: false,
             least_fan: 0.0,
             around: OnceLock::new(),
+            merge_floor: None,
         }
     }
 
@@ -139,6 +143,53 @@ impl VertexIds {
     pub(crate) fn least_fan(&self) -> f64 {
         self.least_fan
     }
+
+    /// Records [`merge_floors`] of `polys`, the polygons these are the ids of.
+    pub(crate) fn set_merge_floors(&mut self, polys: &[Polygon]) {
+        self.merge_floor = Some(merge_floors(polys, self));
+    }
+
+    /// Whether no two polygons around vertex `v` can be within `flat` of each other's plane
+    /// (see [`merge_floors`]): false where not known.
+    #[inline]
+    pub(crate) fn apart_beyond(&self, v: u32, flat: f64) -> bool {
+        self.merge_floor
+            .as_ref()
+            .is_some_and(|floor| floor[v as usize] > flat)
+    }
+}
+
+/// Per vertex, the least over pairs of polygons around it facing the same way (normals' dot
+/// above 0) of the farthest any corner of one lies from the other's plane, the lesser of the
+/// two ways round (∞ where no pair, or a distance is NaN). Two such polygons have every corner
+/// of one within `flat` of the other's plane only where this is at most `flat`, whatever their
+/// sources: a boolean's `keep_far` asks the full test (sources too) only there. Made once per
+/// solid read from a mesh, not per boolean; flipping every polygon leaves it as it is (the
+/// distances and dot products change sign or not, not size).
+pub(crate) fn merge_floors(polys: &[Polygon], ids: &VertexIds) -> Vec<f64> {
+    // How far `b`'s corners lie from `a`'s plane at most (∞ for NaN: never within).
+    let reach = |a: &Polygon, b: &Polygon| {
+        b.vertices().iter().fold(0.0f64, |m, &v| {
+            let d = a.plane().distance(v).abs();
+            if d.is_nan() { f64::INFINITY } else { m.max(d) }
+        })
+    };
+    (0..ids.vertex_count() as u32)
+        .map(|v| {
+            let star = ids.around(v);
+            let mut least = f64::INFINITY;
+            for (k, &x) in star.iter().enumerate() {
+                let p = &polys[x as usize];
+                for &y in &star[k + 1..] {
+                    let q = &polys[y as usize];
+                    if p.plane().normal.dot(q.plane().normal) > 0.0 {
+                        least = least.min(reach(p, q).min(reach(q, p)));
+                    }
+                }
+            }
+            least
+        })
+        .collect()
 }
 
 /// Of the triangles of every polygon's fan from its first corner, `(v₀, vₖ, vₖ₊₁)`: whether
@@ -183,6 +234,35 @@ mod tests {
         assert_eq!(t.corners(1), [0, 2, 3]);
         assert_eq!(t.around(0), [0, 1, 2]);
         assert_eq!(t.around(3), [1, 2, 3]);
+    }
+
+    /// Two triangles on an edge: in one plane, their shared corners' floor is 0 and the others'
+    /// ∞ (no pair around them); folded up by 0.5 at the far corner, the floor is the lesser
+    /// of that corner's height and the origin's distance from the folded plane, 1/√6; facing
+    /// apart, ∞.
+    #[test]
+    fn merge_floors_are_the_nearest_pair_around_each_vertex() {
+        let tri = |a: DVec3, b: DVec3, c: DVec3| Polygon::new(&[a, b, c], 0).unwrap();
+        let (o, x, y) = (DVec3::ZERO, DVec3::X, DVec3::Y);
+        let floors = |far: DVec3, flip: bool| {
+            let mut second = tri(x, far, y);
+            if flip {
+                second = tri(x, y, far);
+            }
+            let polys = [tri(o, x, y), second];
+            let ids = VertexIds::new(&polys);
+            merge_floors(&polys, &ids)
+        };
+        let inf = f64::INFINITY;
+        assert_eq!(
+            floors(DVec3::new(1.0, 1.0, 0.0), false),
+            [inf, 0.0, 0.0, inf]
+        );
+        let folded = floors(DVec3::new(1.0, 1.0, 0.5), false);
+        assert!((folded[1] - 1.0 / 6f64.sqrt()).abs() < 1e-15, "{folded:?}");
+        assert_eq!(folded[1], folded[2]);
+        assert_eq!((folded[0], folded[3]), (inf, inf));
+        assert_eq!(floors(DVec3::new(1.0, 1.0, 0.5), true), [inf; 4]);
     }
 
     /// A square of side 2 fans from its first corner into two right triangles of twice area 4:
