@@ -240,7 +240,9 @@ impl Tree {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::polygon::Split;
     use crate::solid::Solid;
+    use glam::DVec3;
 
     /// csg.js's first-polygon splitter makes a convex solid a chain as deep as its polygon
     /// count; cell splits keep it logarithmic with a short face chain at the bottom.
@@ -250,6 +252,52 @@ mod tests {
         let n = sphere.polygon_count();
         let tree = Tree::build(sphere.into_polygons(), 1e-12);
         assert!(tree.depth() < 64, "depth {} for {n} polygons", tree.depth());
+    }
+
+    /// A polygon thinner than the tolerance across a face node's plane, which crosses its own
+    /// steeply (a wedge's end between two faces 1.4e-10 rad apart, 1.5e-13 wide), is stored at
+    /// that node as coplanar and also passed to the side it lies on, so the subtree there is
+    /// bounded by its plane. Stored at the node alone, the region beyond the sliver's end
+    /// read as the sliver's inside, and a face of the other operand there was dropped.
+    #[test]
+    fn a_sliver_across_a_splitter_bounds_the_side_it_lies_on() {
+        let eps = 1e-12;
+        let floor = Polygon::new(
+            &[
+                DVec3::new(-1.0, -1.0, 0.0),
+                DVec3::new(1.0, -1.0, 0.0),
+                DVec3::new(1.0, 1.0, 0.0),
+                DVec3::new(-1.0, 1.0, 0.0),
+            ],
+            0,
+        )
+        .unwrap();
+        // In the plane x = 0, at most 2e-13 above the floor.
+        let sliver = Polygon::new(
+            &[
+                DVec3::new(0.0, -0.5, 0.0),
+                DVec3::new(0.0, 0.5, 0.0),
+                DVec3::new(0.0, 0.0, 2e-13),
+            ],
+            0,
+        )
+        .unwrap();
+        assert!(matches!(sliver.split(floor.plane(), eps), Split::Coplanar));
+        let tree = Tree::build(vec![floor.clone(), sliver.clone()], eps);
+        let Link::Node(root) = tree.root else {
+            panic!("no node")
+        };
+        let root = &tree.nodes[root as usize];
+        assert!(root.plane.is_same_or_flipped(floor.plane()));
+        let Link::Node(front) = root.front else {
+            panic!("nothing in front of the floor")
+        };
+        assert!(
+            tree.nodes[front as usize]
+                .plane
+                .is_same_or_flipped(sliver.plane())
+        );
+        assert!(matches!(root.back, Link::Leaf(Label::Inside)));
     }
 
     /// Issue 12 item 6: a tree's build charges the corners of the pieces its splits cut to the

@@ -47,6 +47,14 @@ impl Polygon {
             || !banded(self.plane.normal.cross(plane.normal).length())
     }
 
+    /// True when `plane` crosses the polygon's own at a sine of at least [`ON_BAND_BELOW`] (not
+    /// nearly parallel), so that a polygon within `eps` of it is a sliver thinner than the
+    /// tolerance across it rather than a face lying in it.
+    pub(crate) fn crosses(&self, plane: &Plane) -> bool {
+        !self.plane.is_same_or_flipped(plane)
+            && self.plane.normal.cross(plane.normal).length() >= ON_BAND_BELOW
+    }
+
     /// Classifies against `plane` and, where the polygon spans it, cuts it in two. A polygon is
     /// coplanar with its own plane whatever its vertices say (see [`Plane::is_same_or_flipped`]),
     /// and with any plane all its vertices lie on, as told below.

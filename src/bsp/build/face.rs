@@ -1,16 +1,20 @@
 //! Face splits: csg.js nodes, the splitter chosen among a few of the cell's polygons.
 
+use glam::DVec3;
+
 use super::arena::Arena;
 use super::{Ids, Scratch};
 use crate::bsp::{Kind, Label, Link, Node, Tree};
-use crate::geom::{Aabb, Side};
+use crate::geom::{Aabb, Plane, Side};
 use crate::polygon::{Split, Vertices};
 
 /// How many polygons a face split tries as splitter.
 const SPLITTER_CANDIDATES: usize = 5;
 
 impl Tree {
-    /// A csg.js node: the chosen splitter's plane keeps the polygons coplanar with it; the rest
+    /// A csg.js node: the chosen splitter's plane keeps the polygons coplanar with it (a sliver
+    /// across it, coplanar by the tolerance alone, also goes to the side it lies on: see
+    /// [`sliver_side`]); the rest
     /// go front or back, split where they span it. Empty sides stay leaves: outside in front,
     /// inside behind. The splitter's choice already classified every polygon against its plane;
     /// only those it could not settle (see [`Class`]) are handed to [`Polygon::split`].
@@ -67,6 +71,15 @@ impl Tree {
                 Split::Coplanar => {
                     own = own.union(&arena.boxes[id as usize]);
                     self.polygons.push(arena.poly(id).clone());
+                    // A sliver across the plane (within `eps` of it, its own plane crossing it
+                    // steeply) also bounds the side it lies on; see `sliver_side`.
+                    if poly.crosses(&plane) {
+                        match sliver_side(poly.vertices(), &plane) {
+                            Some(Side::Front) => front.near.push(id),
+                            Some(_) => back.near.push(id),
+                            None => {}
+                        }
+                    }
                 }
                 Split::Front => front.near.push(id),
                 Split::Back => back.near.push(id),
@@ -88,6 +101,34 @@ impl Tree {
             own,
         };
         (node, front, back)
+    }
+}
+
+/// The side of `plane` a polygon lying within the tolerance of it, in a plane crossing it
+/// steeply, reaches further to (`None` on a tie: every vertex on it).
+///
+/// Such a polygon is coplanar with `plane` by the tolerance alone: the end of a sliver thinner
+/// than the tolerance, such as the wedge between two faces crossing at 1.4e-10 rad (a cube's
+/// face beside a slab's turned 1e-8°, 1.5e-13 apart where the cube ends). Kept at the node
+/// alone, as csg.js keeps coplanar polygons, its plane bounded neither side, and the subtree on
+/// the sliver's side, which holds the sliver's long faces, took the region beyond its end for
+/// the sliver's inside: a face of the other operand lying there, outside by 1e-13 (and within
+/// the tolerance of the sliver's face, which that operand's tree had judged inside it), was
+/// dropped with it, a hole of 1.1e-6 in a union of that cube and slab with a bar (the solid
+/// 4.6e-8 below its larger operand). Passed also to the side it lies on (never to both: on
+/// the other side its plane bounds nothing, and a leaf behind it would read inside), its plane
+/// bounds the sliver there.
+fn sliver_side(vertices: &[DVec3], plane: &Plane) -> Option<Side> {
+    let (lo, hi) = vertices.iter().fold((0.0f64, 0.0f64), |(lo, hi), &v| {
+        let d = plane.distance(v);
+        (lo.min(d), hi.max(d))
+    });
+    if hi > -lo {
+        Some(Side::Front)
+    } else if -lo > hi {
+        Some(Side::Back)
+    } else {
+        None
     }
 }
 
