@@ -28,7 +28,7 @@ mod surface;
 pub(crate) use build::{FOCUS_MARGIN, Focus};
 pub(crate) use clip::Coplanar;
 pub(crate) use meter::Meter;
-pub(crate) use surface::Surface;
+pub(crate) use surface::{Surface, SurfaceIndex};
 
 use crate::geom::{Aabb, Plane};
 use crate::polygon::Polygon;

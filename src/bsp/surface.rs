@@ -1,6 +1,7 @@
 //! An operand's surface as a polygon set with a BVH: which polygons of the other operand come
 //! near it, and whether a point away from it is inside (ray parity).
 
+use std::borrow::Cow;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::DVec3;
@@ -25,9 +26,26 @@ const DIRECTIONS: [[f64; 3]; 6] = [
 
 pub(crate) struct Surface<'a> {
     polygons: &'a [Polygon],
+    boxes: Cow<'a, [Aabb]>,
+    bvh: Cow<'a, Bvh>,
+    eps: f64,
+}
+
+/// A polygon set's boxes and their hierarchy, what a [`Surface`] of it is built on: made once
+/// for a solid read from a mesh, rather than by every boolean it enters.
+#[derive(Debug)]
+pub(crate) struct SurfaceIndex {
     boxes: Vec<Aabb>,
     bvh: Bvh,
-    eps: f64,
+}
+
+impl SurfaceIndex {
+    /// The boxes of `polygons` and their hierarchy.
+    pub(crate) fn new(polygons: &[Polygon]) -> SurfaceIndex {
+        let boxes: Vec<Aabb> = polygons.iter().map(Polygon::bbox).collect();
+        let bvh = Bvh::build(&boxes);
+        SurfaceIndex { boxes, bvh }
+    }
 }
 
 enum Crossing {
@@ -40,12 +58,22 @@ enum Crossing {
 
 impl<'a> Surface<'a> {
     pub fn new(polygons: &'a [Polygon], eps: f64) -> Self {
-        let boxes: Vec<Aabb> = polygons.iter().map(Polygon::bbox).collect();
-        let bvh = Bvh::build(&boxes);
+        let SurfaceIndex { boxes, bvh } = SurfaceIndex::new(polygons);
         Surface {
             polygons,
-            boxes,
-            bvh,
+            boxes: Cow::Owned(boxes),
+            bvh: Cow::Owned(bvh),
+            eps,
+        }
+    }
+
+    /// [`Surface::new`] on the index made of these polygons before.
+    pub fn indexed(polygons: &'a [Polygon], index: &'a SurfaceIndex, eps: f64) -> Self {
+        debug_assert_eq!(polygons.len(), index.boxes.len());
+        Surface {
+            polygons,
+            boxes: Cow::Borrowed(&index.boxes),
+            bvh: Cow::Borrowed(&index.bvh),
             eps,
         }
     }

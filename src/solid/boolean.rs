@@ -225,7 +225,8 @@ fn boolean_at_least(
             .unwrap_or_else(|| Arc::new(VertexIds::new(polys)))
     };
     let (a_ids, b_ids) = (ids_of(&a, a_ids, a_cut), ids_of(&b, b_ids, b_cut));
-    let (surface_a, surface_b) = rayon::join(|| Surface::new(&a, eps), || Surface::new(&b, eps));
+    let (surface_a, surface_b) =
+        rayon::join(|| surface(&a, &a_ids, eps), || surface(&b, &b_ids, eps));
     let margin = FOCUS_MARGIN * eps;
     let (near_a, near_b) = surface_a.near_each_other(&surface_b, margin);
     let (a_kept, b_kept) = rayon::join(
@@ -261,6 +262,15 @@ fn boolean_at_least(
     share_near_parallel_vertices(&mut [&mut a_near, &mut b_near], eps);
     let (polygons, index) = assemble((a_far, a_near), (b_far, b_near), op == BoolOp::Difference);
     Solid::with_eps(polygons, eps, lost).with_index(index)
+}
+
+/// The surface of an operand's polygons: on the boxes and hierarchy it brings along where it
+/// was read from a mesh (made once then, not per boolean).
+fn surface<'a>(polys: &'a [Polygon], ids: &'a VertexIds, eps: f64) -> Surface<'a> {
+    match ids.surface() {
+        Some(index) => Surface::indexed(polys, index, eps),
+        None => Surface::new(polys, eps),
+    }
 }
 
 /// A solid's polygons, borrowed where the solid is, and its vertex ids.

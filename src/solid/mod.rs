@@ -127,6 +127,7 @@ impl Solid {
         ids.set_discs(discs_if_apart == Some(ids.vertex_count()));
         ids.set_fans(vertex_ids::check_fans(&polygons));
         ids.set_merge_floors(&polygons);
+        ids.set_surface(&polygons);
         Solid {
             vertex_ids: Some(Arc::new(ids)),
             ..Solid::from_polygons(polygons)

@@ -7,6 +7,7 @@
 
 use std::sync::OnceLock;
 
+use crate::bsp::SurfaceIndex;
 use crate::geom::is_zero_area;
 use crate::hash::{KeyedHashMap, key};
 use crate::mesh::needles::twice_area_squared;
@@ -35,6 +36,8 @@ pub(crate) struct VertexIds {
     /// Per vertex, a floor under the distance at which two polygons around it could be merged
     /// as coplanar (see [`merge_floors`]), where made (a solid read from a mesh).
     merge_floor: Option<Vec<f64>>,
+    /// The polygons' boxes and their hierarchy, where made (a solid read from a mesh).
+    surface: Option<SurfaceIndex>,
 }
 
 /// The polygons around vertex `v` are `list[at[v]..at[v + 1]]`, ascending (a polygon with a
@@ -69,6 +72,7 @@ impl VertexIds {
             least_fan: 0.0,
             around: OnceLock::new(),
             merge_floor: None,
+            surface: None,
         }
     }
 
@@ -147,6 +151,16 @@ impl VertexIds {
     /// Records [`merge_floors`] of `polys`, the polygons these are the ids of.
     pub(crate) fn set_merge_floors(&mut self, polys: &[Polygon]) {
         self.merge_floor = Some(merge_floors(polys, self));
+    }
+
+    /// Records the [`SurfaceIndex`] of `polys`, the polygons these are the ids of.
+    pub(crate) fn set_surface(&mut self, polys: &[Polygon]) {
+        self.surface = Some(SurfaceIndex::new(polys));
+    }
+
+    /// The polygons' boxes and hierarchy, where made.
+    pub(crate) fn surface(&self) -> Option<&SurfaceIndex> {
+        self.surface.as_ref()
     }
 
     /// Whether no two polygons around vertex `v` can be within `flat` of each other's plane
