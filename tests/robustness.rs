@@ -102,11 +102,12 @@ fn cube_minus_cube_turned_about_a_skew_axis() {
 /// judged the vertices near the twin's plane across the one crossing line both operands
 /// compute (`Crossing` in `polygon/planes.rs`): the difference at 3e-6° about (1, 1, 1), whose
 /// polygons did not close, and the unions at 3e-6° about (1, 1, 1) and 3e-7° about
-/// (−0.2, 0.7, 1); none is now. One closed result holds needles since: the difference at 1e-6°
+/// (−0.2, 0.7, 1); none is now. One closed result held needles since: the difference at 1e-6°
 /// about (−0.2, 0.7, 1), genus 1 with 2 specks (areas 5e-17 and 4e-18) where the turned cube's
 /// corner lies 1e-8 from the other's (0, 0, 1) on its top face, a feature the crossing line now
-/// resolves that the needle pass does not remove (before, both corners counted as on the twin
-/// face and the result was genus 0).
+/// resolves (before, both corners counted as on the twin face and the result was genus 0). The
+/// needle pass removes them since any edge of a needle may stretch within the bound where
+/// nothing else applies (`Work::stretch_any` in `mesh/needles/fix.rs`): none holds needles.
 #[test]
 fn cubes_turned_a_hair_about_several_axes_close() {
     let cube = Solid::cube(1.0)
@@ -144,11 +145,7 @@ fn cubes_turned_a_hair_about_several_axes_close() {
     }
     println!("refused: {refused:#?}\nwith needles: {needled:#?}");
     assert!(refused.is_empty(), "{refused:#?}");
-    assert_eq!(
-        needled,
-        ["cube - cube turned 1e-6° about [-0.2, 0.7, 1]"],
-        "{needled:#?}"
-    );
+    assert!(needled.is_empty(), "{needled:#?}");
 }
 
 /// The unit cube minus the 273 bars of a depth-3 Menger sponge (the geometry of the crate's own

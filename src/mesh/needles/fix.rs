@@ -23,6 +23,29 @@ impl Work {
             best => best,
         }
         .or_else(|| self.widen(t, bound))
+        .or_else(|| self.stretch_any(t, bound))
+    }
+
+    /// Stretching any edge of needle `t`, either way, within `bound`, the one that sweeps the
+    /// least: the very last resort, where nothing else applies (see [`Work::plan_stretch`]).
+    /// [`Work::choose`] stretches only a spike's shortest edge. On a handle (every edge of the
+    /// needle fails the link condition, no flip keeps its orientation; the round-20 fork input
+    /// 79dd0a25, step 1) a flat sliver with sides 0.25, 0.25 and 7.6·10⁻⁷, its far corner
+    /// 6.7·10⁻⁸ off the line of the short edge, is no spike by its height over the longest
+    /// edge (2·10⁻¹³), and was left; beside it, a speck whose shortest edge's stretch moves a
+    /// corner out of a large triangle's plane by 5.7·10⁻⁶ (the bound 1.8·10⁻⁶) stretches
+    /// another edge instead, along that plane (1.5·10⁻⁶).
+    fn stretch_any(&self, t: u32, bound: f64) -> Option<Op> {
+        let tri = self.tris[t as usize];
+        (0..3)
+            .flat_map(|k| {
+                let (p, q) = (tri[k], tri[(k + 1) % 3]);
+                [self.plan_stretch(t, p, q), self.plan_stretch(t, q, p)]
+            })
+            .flatten()
+            .filter(|plan| plan.dev <= bound)
+            .min_by(|a, b| a.swept.total_cmp(&b.swept))
+            .map(|plan| plan.op)
     }
 
     /// Applies `op` (planned by [`Work::plan`]); the triangles it changed.

@@ -325,6 +325,7 @@ impl Work {
         let mut changed = self.around[vertices[0] as usize].to_vec();
         if cut {
             changed.extend_from_slice(&self.around[vertices[1] as usize]);
+            self.split_shell(vertices[0], vertices[1]);
         }
         changed
     }

@@ -30,7 +30,8 @@
 //!   place). Keeps the volume as a collapse does.
 //! * **Stretch** a spike no flip or collapse can take (the tip of a thin wedge): one end of its
 //!   short edge moves away from the other along it, about the needle's height, until the
-//!   area is half again the threshold ([`Work::plan_stretch`]).
+//!   area is half again the threshold ([`Work::plan_stretch`]). Where nothing else at all
+//!   applies, any edge of any needle may stretch so, within the bound.
 //! * **Widen** a flat sliver that nothing else can take: its apex moves away from its long
 //!   edge in its fan's plane until the area is half again the threshold
 //!   ([`Work::plan_widen`]). The last resort, after every removal within the bound.

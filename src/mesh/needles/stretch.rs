@@ -21,6 +21,10 @@ impl Work {
         let (source, target) = (self.positions[from as usize], self.positions[to as usize]);
         let grow = 1.5 * self.threshold(tri) / area(self.corners(tri));
         let at = target + (source - target) * grow;
+        // A needle of no area at all has no direction to grow in.
+        if !at.is_finite() {
+            return None;
+        }
         let (mut dev, mut swept) = (0.0f64, 0.0);
         for &u in &self.around[from as usize] {
             let old = self.tris[u as usize];

@@ -31,6 +31,8 @@ pub(super) struct Work {
     /// The plane tolerance of booleans at the shell's scale: moves this small are always fine.
     pub(super) tolerance: Vec<f64>,
     pub(super) shell_tris: Vec<usize>,
+    /// The cap on every shell's diagonal (see [`super::remove_needles`]).
+    scale: f64,
 }
 
 impl Work {
@@ -77,6 +79,60 @@ impl Work {
             max_move: diag.iter().map(|d| SPECK_MOVE * d).collect(),
             tolerance: diag.iter().map(|d| Tolerance::RELATIVE * d).collect(),
             shell_tris,
+            scale,
+        }
+    }
+
+    /// After a neck cut between apexes `a` and `b`: where no edge joins their sides any more,
+    /// `b`'s side becomes a shell of its own, and each side's count and thresholds are its own.
+    /// Kept whole, a side split off small kept the old shell's count and diagonal: a cone of
+    /// four triangles 2·10⁻⁵ across cut off a shell 3 across had faces that were needles by the
+    /// old diagonal only, and passed the "more than four triangles" guard of a collapse, which
+    /// folded it into two triangles back to back.
+    pub(super) fn split_shell(&mut self, a: u32, b: u32) {
+        let old = self.shell[a as usize];
+        let mut side = vec![b];
+        let mut reached = vec![false; self.positions.len()];
+        reached[b as usize] = true;
+        let mut next = 0;
+        while next < side.len() {
+            let v = side[next];
+            next += 1;
+            for &u in &self.around[v as usize] {
+                for w in self.tris[u as usize] {
+                    if w == a {
+                        return;
+                    }
+                    if !std::mem::replace(&mut reached[w as usize], true) {
+                        side.push(w);
+                    }
+                }
+            }
+        }
+        let new = self.shell_tris.len() as u32;
+        let mut count = 0;
+        for &v in &side {
+            self.shell[v as usize] = new;
+            count += self.around[v as usize].len();
+        }
+        // Each triangle is counted at its three corners.
+        let count = count / 3;
+        self.shell_tris[old as usize] -= count;
+        self.shell_tris.push(count);
+        self.needle_area.push(0.0);
+        self.max_move.push(0.0);
+        self.tolerance.push(0.0);
+        for shell in [old, new] {
+            let mut bbox = Aabb::EMPTY;
+            for v in 0..self.positions.len() {
+                if self.shell[v] == shell && !self.around[v].is_empty() {
+                    bbox.grow(self.positions[v]);
+                }
+            }
+            let d = bbox.diagonal().min(self.scale);
+            self.needle_area[shell as usize] = NEEDLE_AREA * d * d;
+            self.max_move[shell as usize] = SPECK_MOVE * d;
+            self.tolerance[shell as usize] = Tolerance::RELATIVE * d;
         }
     }
 
