@@ -320,6 +320,59 @@ mod tests {
         }
     }
 
+    /// A vertex among more polygons than `merge_floors` compares has no floor: `keep_far` runs
+    /// its full test there and sorts core from rim as with vertex ids made per boolean (no
+    /// floors at all). A spindle: two cones of `n` sides, apexes down at z = −1 and up at
+    /// z = 1.1, joined by a band from z = 0 to 0.1; a cube cuts the top apex only, so the
+    /// bottom apex is asked about, and its triangles are core.
+    #[test]
+    fn a_vertex_above_the_star_cap_gets_the_full_test() {
+        let n = 4 * super::super::vertex_ids::STAR_CAP as u32;
+        let mut positions = vec![DVec3::new(0.0, 0.0, -1.0), DVec3::new(0.0, 0.0, 1.1)];
+        for z in [0.0, 0.1] {
+            for i in 0..n {
+                let a = f64::from(i) / f64::from(n) * std::f64::consts::TAU;
+                positions.push(DVec3::new(a.cos(), a.sin(), z));
+            }
+        }
+        let mut triangles = Vec::new();
+        for i in 0..n {
+            let (p, q) = (2 + i, 2 + (i + 1) % n);
+            triangles.push([0, q, p]);
+            triangles.push([p, q, q + n]);
+            triangles.push([p, q + n, p + n]);
+            triangles.push([1, p + n, q + n]);
+        }
+        let spindle = Solid::from_mesh(&crate::Mesh::new(positions, triangles)).unwrap();
+        assert!(spindle.to_mesh().report().is_closed_manifold());
+        let cube = Solid::cube(0.2)
+            .unwrap()
+            .translate(DVec3::new(0.0, 0.0, 1.1))
+            .unwrap()
+            .with_source(2);
+        let bare = |s: &Solid| Solid::from_polygons(s.polygons().to_vec());
+        for op in BoolOp::ALL {
+            let (own, made) = (
+                boolean(&spindle, &cube, op),
+                boolean(&bare(&spindle), &cube, op),
+            );
+            assert_eq!(own.polygons(), made.polygons(), "{op}");
+            let (x, y) = (own.index(), made.index());
+            assert_eq!(x.is_some(), y.is_some(), "{op}");
+            if let (Some(x), Some(y)) = (x, y) {
+                assert_eq!(
+                    (x.core, &x.rim, &x.ids, x.vertex_count),
+                    (y.core, &y.rim, &y.ids, y.vertex_count),
+                    "{op}"
+                );
+            }
+        }
+        // The union keeps the bottom cone, around the apex asked about, as core.
+        let union = boolean(&spindle, &cube, BoolOp::Union);
+        let core = union.index().map_or(0, |x| x.core);
+        assert!(core >= n as usize, "{core}");
+    }
+
     #[test]
     fn a_boolean_of_booleans_is_not_indexed_where_its_operands_were_cut() {
         let s = Solid::sphere(1.0, 24, 12).unwrap();

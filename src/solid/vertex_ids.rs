@@ -173,13 +173,20 @@ impl VertexIds {
     }
 }
 
+/// The most polygons around a vertex whose pairs [`merge_floors`] compares: above it a
+/// vertex's floor is 0 (not known), and a boolean's `keep_far` runs its own test there, once
+/// per vertex it asks about, stopping at the first pair that merges. Bounds the work of
+/// reading a mesh at `STAR_CAP` times its corners (a cone's apex around n triangles would
+/// otherwise cost n²/2 pair tests at every read).
+pub(crate) const STAR_CAP: usize = 32;
+
 /// Per vertex, the least over pairs of polygons around it facing the same way (normals' dot
 /// above 0) of the farthest any corner of one lies from the other's plane, the lesser of the
-/// two ways round (∞ where no pair, or a distance is NaN). Two such polygons have every corner
-/// of one within `flat` of the other's plane only where this is at most `flat`, whatever their
-/// sources: a boolean's `keep_far` asks the full test (sources too) only there. Made once per
-/// solid read from a mesh, not per boolean; flipping every polygon leaves it as it is (the
-/// distances and dot products change sign or not, not size).
+/// two ways round (∞ where no pair, or a distance is NaN; 0, not known, where more than
+/// [`STAR_CAP`] polygons are around it). Two such polygons have every corner of one within
+/// `flat` of the other's plane only where this is at most `flat`, whatever their sources: a
+/// boolean's `keep_far` asks the full test (sources too) only there. Made once per solid read
+/// from a mesh, not per boolean.
 pub(crate) fn merge_floors(polys: &[Polygon], ids: &VertexIds) -> Vec<f64> {
     // How far `b`'s corners lie from `a`'s plane at most (∞ for NaN: never within).
     let reach = |a: &Polygon, b: &Polygon| {
@@ -191,6 +198,9 @@ pub(crate) fn merge_floors(polys: &[Polygon], ids: &VertexIds) -> Vec<f64> {
     (0..ids.vertex_count() as u32)
         .map(|v| {
             let star = ids.around(v);
+            if star.len() > STAR_CAP {
+                return 0.0;
+            }
             let mut least = f64::INFINITY;
             for (k, &x) in star.iter().enumerate() {
                 let p = &polys[x as usize];
@@ -277,6 +287,30 @@ mod tests {
         assert_eq!(folded[1], folded[2]);
         assert_eq!((folded[0], folded[3]), (inf, inf));
         assert_eq!(floors(DVec3::new(1.0, 1.0, 0.5), true), [inf; 4]);
+    }
+
+    /// A cone read from a mesh: with its apex among 16 triangles the apex's floor is known (the
+    /// sides fold away from each other: above 0); among 64, more than [`STAR_CAP`], it is 0,
+    /// not known, so `keep_far` runs its full test there.
+    #[test]
+    fn a_star_above_the_cap_has_no_floor() {
+        let apex_floor = |segments: u32| {
+            let mesh = crate::Solid::cone(1.0, 1.0, segments).unwrap().to_mesh();
+            let solid = crate::Solid::from_mesh(&mesh).unwrap();
+            let (polys, ids) = solid.into_parts();
+            let ids = ids.unwrap();
+            let apex = (0..ids.vertex_count() as u32)
+                .max_by_key(|&v| ids.around(v).len())
+                .unwrap();
+            (
+                ids.around(apex).len(),
+                merge_floors(&polys, &ids)[apex as usize],
+            )
+        };
+        let (star, floor) = apex_floor(16);
+        assert!(star <= STAR_CAP && floor > 0.0, "{star} {floor}");
+        let (star, floor) = apex_floor(64);
+        assert!(star > STAR_CAP && floor == 0.0, "{star} {floor}");
     }
 
     /// A square of side 2 fans from its first corner into two right triangles of twice area 4:
