@@ -6,7 +6,7 @@ use crate::disjoint_sets::DisjointSets;
 use crate::mesh::repair::Indexed;
 use crate::polygon::Polygon;
 
-use super::vertex_ids::VertexIds;
+use super::vertex_ids::{VertexIds, reach};
 
 /// One operand's kept far polygons: `polygons[..core]` the core, `polygons[core..core + rim]`
 /// the rim, both with their corners' vertex ids in `ids`; the rest (an operand not indexed)
@@ -102,8 +102,9 @@ pub(super) fn keep_far(
         Open::No => false,
         // Known from the solid where no two polygons around come within `flat`.
         Open::Unknown if ids.apart_beyond(id, flat) => {
-            // The unit tests check the floor against the full test.
-            if cfg!(test) {
+            // Debug builds and the unit tests (run in release too) check the floor against the
+            // full test: bounded, a floor being known only around at most `STAR_CAP` polygons.
+            if cfg!(any(test, debug_assertions)) {
                 assert!(!merges_around(id), "vertex {id}: the floor missed a merge");
             }
             open[id as usize] = Open::No;
@@ -150,15 +151,11 @@ enum Open {
 
 /// Whether `to_mesh` could put the two polygons in one coplanar region: one source, facing the
 /// same way, the corners of one within `flat` of the other's plane.
+/// The distances are [`reach`]'s, as the merge floors' are.
 fn mergeable(p: &Polygon, q: &Polygon, flat: f64) -> bool {
-    let within = |a: &Polygon, b: &Polygon| {
-        b.vertices()
-            .iter()
-            .all(|&v| a.plane().distance(v).abs() <= flat)
-    };
     p.source() == q.source()
         && p.plane().normal.dot(q.plane().normal) > 0.0
-        && (within(p, q) || within(q, p))
+        && (reach(p, q) <= flat || reach(q, p) <= flat)
 }
 
 /// The boolean's output: both operands' cores, then A's rim and the rest of A (far polygons of

@@ -188,13 +188,6 @@ pub(crate) const STAR_CAP: usize = 32;
 /// boolean's `keep_far` asks the full test (sources too) only there. Made once per solid read
 /// from a mesh, not per boolean.
 pub(crate) fn merge_floors(polys: &[Polygon], ids: &VertexIds) -> Vec<f64> {
-    // How far `b`'s corners lie from `a`'s plane at most (∞ for NaN: never within).
-    let reach = |a: &Polygon, b: &Polygon| {
-        b.vertices().iter().fold(0.0f64, |m, &v| {
-            let d = a.plane().distance(v).abs();
-            if d.is_nan() { f64::INFINITY } else { m.max(d) }
-        })
-    };
     (0..ids.vertex_count() as u32)
         .map(|v| {
             let star = ids.around(v);
@@ -214,6 +207,17 @@ pub(crate) fn merge_floors(polys: &[Polygon], ids: &VertexIds) -> Vec<f64> {
             least
         })
         .collect()
+}
+
+/// How far `b`'s corners lie from `a`'s plane at most (∞ where a distance is NaN: never
+/// within anything). `to_mesh` could merge the two as coplanar only where this is at most its
+/// weld distance one way round or the other: [`merge_floors`] and a boolean's `keep_far` both
+/// ask it, so they agree.
+pub(crate) fn reach(a: &Polygon, b: &Polygon) -> f64 {
+    b.vertices().iter().fold(0.0f64, |m, &v| {
+        let d = a.plane().distance(v).abs();
+        if d.is_nan() { f64::INFINITY } else { m.max(d) }
+    })
 }
 
 /// Of the triangles of every polygon's fan from its first corner, `(v₀, vₖ, vₖ₊₁)`: whether
