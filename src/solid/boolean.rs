@@ -267,7 +267,7 @@ fn boolean_at_least(
 /// The surface of an operand's polygons: on the boxes and hierarchy it brings along where it
 /// was read from a mesh (made once then, not per boolean).
 fn surface<'a>(polys: &'a [Polygon], ids: &'a VertexIds, eps: f64) -> Surface<'a> {
-    match ids.surface() {
+    match ids.surface_index() {
         Some(index) => Surface::indexed(polys, index, eps),
         None => Surface::new(polys, eps),
     }

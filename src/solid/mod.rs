@@ -56,8 +56,9 @@ pub struct Solid {
     /// The polygons a boolean passed through whole, with vertex ids (see [`Indexed`]): kept
     /// only while the polygons are the boolean's own, so any change to them drops it.
     index: Option<Indexed>,
-    /// The vertex ids of the polygons' corners, for a solid made from a mesh (see
-    /// [`VertexIds`]): kept only while the polygons are the mesh's own.
+    /// The vertex ids of the polygons' corners, for a solid made from a mesh, with its
+    /// polygons' boxes and hierarchy, merge floors and fan checks (see [`VertexIds`]): kept
+    /// only while the polygons are the mesh's own.
     vertex_ids: Option<Arc<VertexIds>>,
 }
 
@@ -127,7 +128,7 @@ impl Solid {
         ids.set_discs(discs_if_apart == Some(ids.vertex_count()));
         ids.set_fans(vertex_ids::check_fans(&polygons));
         ids.set_merge_floors(&polygons);
-        ids.set_surface(&polygons);
+        ids.set_surface_index(&polygons);
         Solid {
             vertex_ids: Some(Arc::new(ids)),
             ..Solid::from_polygons(polygons)

@@ -1,9 +1,13 @@
 //! Which corners of an exact solid's polygons are one vertex, and which polygons are around
 //! each vertex: what a boolean needs to pass its far part on indexed (see `far.rs`), made once
-//! per solid rather than once per boolean.
+//! per solid rather than once per boolean. A solid read from a mesh also holds here what each
+//! boolean would otherwise make of it again: its polygons' boxes and their hierarchy (a
+//! [`SurfaceIndex`]), the merge floor of each vertex ([`merge_floors`]), and what its fans
+//! are ([`check_fans`]).
 //!
 //! A solid made from a mesh carries it from the start; an exact operand without one (a
-//! primitive, a moved solid) has it made by each boolean it enters.
+//! primitive, a moved solid) has its vertex ids made by each boolean it enters (without the
+//! rest).
 
 use std::sync::OnceLock;
 
@@ -13,7 +17,8 @@ use crate::hash::{KeyedHashMap, key};
 use crate::mesh::needles::twice_area_squared;
 use crate::polygon::Polygon;
 
-/// The vertex ids of a solid's polygon corners and the polygons around each vertex.
+/// The vertex ids of a solid's polygon corners and the polygons around each vertex; for a
+/// solid read from a mesh, also its polygons' [`SurfaceIndex`], merge floors and fan checks.
 #[derive(Debug)]
 pub(crate) struct VertexIds {
     /// Polygon `i`'s corners' ids are `ids[start[i]..start[i + 1]]`. Equal ids are equal
@@ -31,13 +36,14 @@ pub(crate) struct VertexIds {
     /// (as `mesh::needles::twice_area_squared` computes it; see [`check_fans`]), or 0 where
     /// not known.
     least_fan: f64,
-    /// Made when first asked: only an operand passed on indexed needs it.
+    /// Made when first asked: at every read from a mesh ([`merge_floors`] asks it), and in a
+    /// boolean only for an operand passed on indexed.
     around: OnceLock<Around>,
     /// Per vertex, a floor under the distance at which two polygons around it could be merged
     /// as coplanar (see [`merge_floors`]), where made (a solid read from a mesh).
     merge_floor: Option<Vec<f64>>,
     /// The polygons' boxes and their hierarchy, where made (a solid read from a mesh).
-    surface: Option<SurfaceIndex>,
+    surface_index: Option<SurfaceIndex>,
 }
 
 /// The polygons around vertex `v` are `list[at[v]..at[v + 1]]`, ascending (a polygon with a
@@ -72,7 +78,7 @@ impl VertexIds {
             least_fan: 0.0,
             around: OnceLock::new(),
             merge_floor: None,
-            surface: None,
+            surface_index: None,
         }
     }
 
@@ -154,13 +160,13 @@ impl VertexIds {
     }
 
     /// Records the [`SurfaceIndex`] of `polys`, the polygons these are the ids of.
-    pub(crate) fn set_surface(&mut self, polys: &[Polygon]) {
-        self.surface = Some(SurfaceIndex::new(polys));
+    pub(crate) fn set_surface_index(&mut self, polys: &[Polygon]) {
+        self.surface_index = Some(SurfaceIndex::new(polys));
     }
 
     /// The polygons' boxes and hierarchy, where made.
-    pub(crate) fn surface(&self) -> Option<&SurfaceIndex> {
-        self.surface.as_ref()
+    pub(crate) fn surface_index(&self) -> Option<&SurfaceIndex> {
+        self.surface_index.as_ref()
     }
 
     /// Whether no two polygons around vertex `v` can be within `flat` of each other's plane

@@ -9,7 +9,8 @@ use super::{Op, Plan};
 use crate::geom::is_zero_area;
 
 impl Work {
-    /// Moving `from`, an end of needle `t`'s short edge, away from its other end `to` along
+    /// Moving `from`, an end of an edge of needle `t` (its short edge where [`Work::choose`]
+    /// asks; any edge where [`Work::stretch_any`] does), away from its other end `to` along
     /// that edge, until the needle's area is half again the threshold. Where a thin wedge ends
     /// in a face narrower than the bound (a prism's cap turned 0.001° passing 3.9e-10 from a
     /// cube's corner: an end face 3.9e-10 × 4.4e-5), no flip applies and every collapse folds
