@@ -105,7 +105,8 @@ impl Tree {
 }
 
 /// The side of `plane` a polygon lying within the tolerance of it, in a plane crossing it
-/// steeply, reaches further to (`None` on a tie: every vertex on it).
+/// steeply, reaches further to; `None` on a tie: every vertex on the plane, or a sliver
+/// reaching exactly as far to both sides, which then stays at the node alone.
 ///
 /// Such a polygon is coplanar with `plane` by the tolerance alone: the end of a sliver thinner
 /// than the tolerance, such as the wedge between two faces crossing at 1.4e-10 rad (a cube's
@@ -200,4 +201,28 @@ fn choose_splitter(ids: &[u32], arena: &Arena, eps: f64, scratch: &mut Scratch) 
         }
     }
     best.2
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sliver reaching further one way goes that way; one on the plane, or reaching exactly
+    /// as far to both sides (1e-13 each), has no side and stays at the node alone.
+    #[test]
+    fn a_sliver_reaching_as_far_both_ways_has_no_side() {
+        let plane = Plane::from_point_normal(DVec3::ZERO, DVec3::Z).unwrap();
+        let sliver = |up: f64, down: f64| {
+            let vs = [
+                DVec3::new(0.0, 0.0, up),
+                DVec3::new(1.0, 0.0, -down),
+                DVec3::new(0.0, 1.0, 0.0),
+            ];
+            sliver_side(&vs, &plane)
+        };
+        assert_eq!(sliver(2e-13, 1e-13), Some(Side::Front));
+        assert_eq!(sliver(1e-13, 2e-13), Some(Side::Back));
+        assert_eq!(sliver(1e-13, 1e-13), None);
+        assert_eq!(sliver(0.0, 0.0), None);
+    }
 }
