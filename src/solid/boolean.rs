@@ -153,7 +153,17 @@ pub fn boolean_with(a: &Solid, b: &Solid, op: BoolOp, tolerance: Tolerance) -> S
 
 /// [`boolean`] on owned operands, charging the pieces it cuts to `meter`.
 pub(super) fn boolean_owned(a: Solid, b: Solid, op: BoolOp, meter: &Meter) -> Solid {
-    boolean_at_least(Cow::Owned(a), Cow::Owned(b), op, Tolerance::new(0.0), meter)
+    boolean_cow(Cow::Owned(a), Cow::Owned(b), op, meter)
+}
+
+/// [`boolean`] on operands each owned or borrowed, charging the pieces it cuts to `meter`.
+pub(super) fn boolean_cow(
+    a: Cow<'_, Solid>,
+    b: Cow<'_, Solid>,
+    op: BoolOp,
+    meter: &Meter,
+) -> Solid {
+    boolean_at_least(a, b, op, Tolerance::new(0.0), meter)
 }
 
 /// The mark of a boolean whose `meter` is past its limit.
@@ -191,7 +201,7 @@ fn boolean_at_least(
     // Inherited first, so the first loss on the way is the one reported.
     let inherited = a.precision_loss().or(b.precision_loss());
     if a.is_empty() || b.is_empty() || !box_a.overlaps(&box_b, eps) {
-        return disjoint(a.into_owned(), b.into_owned(), op, floor.eps(), inherited);
+        return disjoint(a, b, op, floor.eps(), inherited);
     }
     // A tolerance asked for by the caller is not a loss; one forced by the coordinates'
     // magnitude or carried from a larger boolean is, where it dwarfs the region.
@@ -382,7 +392,14 @@ fn boxes(polys: &[Polygon], near: &[bool]) -> Vec<Aabb> {
 }
 
 /// The result when the operands cannot interact: one is empty or their boxes do not meet.
-fn disjoint(a: Solid, b: Solid, op: BoolOp, floor: f64, lost: Option<PrecisionLoss>) -> Solid {
+/// Operands borrowed are cloned only where kept: both for a union, A for a difference.
+fn disjoint(
+    a: Cow<'_, Solid>,
+    b: Cow<'_, Solid>,
+    op: BoolOp,
+    floor: f64,
+    lost: Option<PrecisionLoss>,
+) -> Solid {
     match op {
         BoolOp::Union => {
             // Two parts of different scales: the finer tolerance serves both, but never below
@@ -402,14 +419,14 @@ fn disjoint(a: Solid, b: Solid, op: BoolOp, floor: f64, lost: Option<PrecisionLo
             } else {
                 eps
             };
-            let mut polygons = a.into_polygons();
-            polygons.extend(b.into_polygons());
+            let mut polygons = a.into_owned().into_polygons();
+            polygons.extend(b.into_owned().into_polygons());
             Solid::with_eps(polygons, eps, lost)
         }
         BoolOp::Intersection => Solid::with_eps(Vec::new(), 0.0, lost),
         BoolOp::Difference => {
             let eps = a.carried_eps();
-            Solid::with_eps(a.into_polygons(), eps, lost)
+            Solid::with_eps(a.into_owned().into_polygons(), eps, lost)
         }
     }
 }

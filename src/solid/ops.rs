@@ -1,12 +1,13 @@
 //! The named wrappers of [`boolean`] (`union`, `intersection`, `difference`), the operators
 //! `|`, `&`, `-` and their assigning forms, and the balanced n-ary reductions.
 
+use std::borrow::Cow;
 use std::ops::{BitAnd, BitAndAssign, BitOr, BitOrAssign, Sub, SubAssign};
 
 use rayon::prelude::*;
 
 use super::Solid;
-use super::boolean::{BoolOp, boolean, boolean_owned, meter_for};
+use super::boolean::{BoolOp, boolean, boolean_cow, boolean_owned, meter_for};
 use crate::bsp::Meter;
 
 impl Solid {
@@ -102,10 +103,11 @@ fn reduce_balanced(mut level: Vec<Solid>, op: BoolOp, meter: &Meter) -> Solid {
     level.pop().unwrap_or_default()
 }
 
-/// [`boolean`] on owned operands, with a meter of its own (the operators').
-fn owned(a: Solid, b: Solid, op: BoolOp) -> Solid {
+/// [`boolean`] on operands each owned or borrowed (a borrowed one is cloned only as far as
+/// the boolean keeps it), with a meter of its own (the operators').
+fn owned(a: Cow<'_, Solid>, b: Cow<'_, Solid>, op: BoolOp) -> Solid {
     let meter = meter_for(a.polygon_count() + b.polygon_count());
-    boolean_owned(a, b, op, &meter)
+    boolean_cow(a, b, op, &meter)
 }
 
 macro_rules! operator {
@@ -119,29 +121,29 @@ macro_rules! operator {
         impl $trait<Solid> for Solid {
             type Output = Solid;
             fn $method(self, rhs: Solid) -> Solid {
-                owned(self, rhs, $op)
+                owned(Cow::Owned(self), Cow::Owned(rhs), $op)
             }
         }
         impl $trait<&Solid> for Solid {
             type Output = Solid;
             fn $method(self, rhs: &Solid) -> Solid {
-                owned(self, rhs.clone(), $op)
+                owned(Cow::Owned(self), Cow::Borrowed(rhs), $op)
             }
         }
         impl $trait<Solid> for &Solid {
             type Output = Solid;
             fn $method(self, rhs: Solid) -> Solid {
-                owned(self.clone(), rhs, $op)
+                owned(Cow::Borrowed(self), Cow::Owned(rhs), $op)
             }
         }
         impl $assign<&Solid> for Solid {
             fn $assign_method(&mut self, rhs: &Solid) {
-                *self = owned(std::mem::take(self), rhs.clone(), $op);
+                *self = owned(Cow::Owned(std::mem::take(self)), Cow::Borrowed(rhs), $op);
             }
         }
         impl $assign<Solid> for Solid {
             fn $assign_method(&mut self, rhs: Solid) {
-                *self = owned(std::mem::take(self), rhs, $op);
+                *self = owned(Cow::Owned(std::mem::take(self)), Cow::Owned(rhs), $op);
             }
         }
     };
