@@ -9,13 +9,17 @@
 //! the pool's worker threads and every parallel stage reads as nearly free.
 //!
 //! Prints one JSON line: op, input and output triangles, the output's volume and whether it is
-//! a closed 2-manifold, the median and minimum over the runs (after one warm-up) of the boolean
+//! a closed 2-manifold, the time to make the solids of all inputs from their meshes (once,
+//! files already read: `load_ms`, so a one-shot load, boolean and mesh can be quoted), the median and minimum over the runs (after one warm-up) of the boolean
 //! alone and of the boolean plus `to_mesh` (manifold3d's result is already a mesh), and every
 //! run's times (`tools/speed_table.sh` pools them across rounds).
 
 use std::time::Instant;
 
 use bspcsg::{BoolOp, Solid, read_mesh};
+
+const USAGE: &str =
+    "usage: bench_obj union|intersection|difference A.obj [B.obj ...] [--runs N] [--one-pool]";
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
@@ -38,21 +42,23 @@ fn run(mut args: Vec<String>) -> Result<(), Box<dyn std::error::Error>> {
         Some("union") => BoolOp::Union,
         Some("intersection") => BoolOp::Intersection,
         Some("difference") => BoolOp::Difference,
-        _ => {
-            return Err(
-                "usage: bench_obj union|intersection|difference A.obj B.obj [...] [--runs N] \
-                 [--one-pool]"
-                    .into(),
-            );
-        }
+        _ => return Err(USAGE.into()),
     };
-    let mut solids = Vec::new();
-    let mut triangles_in = 0;
-    for path in &args[1..] {
-        let mesh = read_mesh(path)?;
-        triangles_in += mesh.triangle_count();
-        solids.push(Solid::from_mesh(&mesh)?);
+    if args.len() < 2 {
+        return Err(USAGE.into());
     }
+    let meshes = args[1..]
+        .iter()
+        .map(read_mesh)
+        .collect::<Result<Vec<_>, _>>()?;
+    let triangles_in: usize = meshes.iter().map(|m| m.triangle_count()).sum();
+    let t0 = Instant::now();
+    let solids = meshes
+        .iter()
+        .map(Solid::from_mesh)
+        .collect::<Result<Vec<_>, _>>()?;
+    let load_ms = t0.elapsed().as_secs_f64() * 1e3;
+    drop(meshes);
     // The first boolean reads both inputs in place, as the reference's `out = solids[0]` does:
     // no copy of an input is timed.
     let combine = || match solids.as_slice() {
@@ -92,7 +98,7 @@ fn run(mut args: Vec<String>) -> Result<(), Box<dyn std::error::Error>> {
     let (t_med, t_min) = median(&mut total_ms);
     println!(
         "{{\"op\": \"{}\", \"input_triangles\": {triangles_in}, \"output_triangles\": {}, \
-         \"volume\": {:.9e}, \"closed_manifold\": {}, \
+         \"volume\": {:.9e}, \"closed_manifold\": {}, \"load_ms\": {load_ms:.3}, \
          \"boolean_median_ms\": {b_med:.3}, \"boolean_min_ms\": {b_min:.3}, \
          \"with_mesh_median_ms\": {t_med:.3}, \"with_mesh_min_ms\": {t_min:.3}, \"runs\": {runs}, \
          \"boolean_ms\": [{boolean_all}], \"with_mesh_ms\": [{total_all}]}}",
