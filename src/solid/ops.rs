@@ -105,7 +105,7 @@ fn reduce_balanced(mut level: Vec<Solid>, op: BoolOp, meter: &Meter) -> Solid {
 
 /// [`boolean`] on operands each owned or borrowed (a borrowed one is cloned only as far as
 /// the boolean keeps it), with a meter of its own (the operators').
-fn owned(a: Cow<'_, Solid>, b: Cow<'_, Solid>, op: BoolOp) -> Solid {
+fn metered(a: Cow<'_, Solid>, b: Cow<'_, Solid>, op: BoolOp) -> Solid {
     let meter = meter_for(a.polygon_count() + b.polygon_count());
     boolean_cow(a, b, op, &meter)
 }
@@ -121,29 +121,29 @@ macro_rules! operator {
         impl $trait<Solid> for Solid {
             type Output = Solid;
             fn $method(self, rhs: Solid) -> Solid {
-                owned(Cow::Owned(self), Cow::Owned(rhs), $op)
+                metered(Cow::Owned(self), Cow::Owned(rhs), $op)
             }
         }
         impl $trait<&Solid> for Solid {
             type Output = Solid;
             fn $method(self, rhs: &Solid) -> Solid {
-                owned(Cow::Owned(self), Cow::Borrowed(rhs), $op)
+                metered(Cow::Owned(self), Cow::Borrowed(rhs), $op)
             }
         }
         impl $trait<Solid> for &Solid {
             type Output = Solid;
             fn $method(self, rhs: Solid) -> Solid {
-                owned(Cow::Borrowed(self), Cow::Owned(rhs), $op)
+                metered(Cow::Borrowed(self), Cow::Owned(rhs), $op)
             }
         }
         impl $assign<&Solid> for Solid {
             fn $assign_method(&mut self, rhs: &Solid) {
-                *self = owned(Cow::Owned(std::mem::take(self)), Cow::Borrowed(rhs), $op);
+                *self = metered(Cow::Owned(std::mem::take(self)), Cow::Borrowed(rhs), $op);
             }
         }
         impl $assign<Solid> for Solid {
             fn $assign_method(&mut self, rhs: Solid) {
-                *self = owned(Cow::Owned(std::mem::take(self)), Cow::Owned(rhs), $op);
+                *self = metered(Cow::Owned(std::mem::take(self)), Cow::Owned(rhs), $op);
             }
         }
     };
