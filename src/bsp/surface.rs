@@ -358,7 +358,7 @@ fn apart_across_edges(poly: &Polygon, other: &Polygon, apart: f64) -> bool {
             let f = q[(k + 1) % q.len()] - q[k];
             let axis = e.cross(f);
             let len = axis.length();
-            if !(len > 1e-9 * e.length() * f.length()) {
+            if len.is_nan() || len <= 1e-9 * e.length() * f.length() {
                 continue;
             }
             let u = axis / len;
