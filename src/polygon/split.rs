@@ -210,7 +210,7 @@ impl Polygon {
 /// tessellations); it depends on the vertex and the plane alone, so every polygon holding the
 /// vertex agrees.
 #[inline]
-fn plane_noise(plane: &Plane, v: DVec3) -> f64 {
+pub(crate) fn plane_noise(plane: &Plane, v: DVec3) -> f64 {
     64.0 * f64::EPSILON * ((v - plane.anchor).abs().max_element() + v.abs().max_element())
 }
 
