@@ -47,6 +47,14 @@ impl Polygon {
             || !banded(self.plane.normal.cross(plane.normal).length())
     }
 
+    /// True when `plane` crosses the polygon's own at a sine below [`ON_BAND_BELOW`] (or is its
+    /// own): the negation of [`Polygon::crosses`] but for rounding at that bound, from the
+    /// cosine alone (no square root), for a build's every polygon near a splitter.
+    pub(crate) fn nearly_parallel_to(&self, plane: &Plane) -> bool {
+        let cos = self.plane.normal.dot(plane.normal);
+        cos * cos > 1.0 - ON_BAND_BELOW * ON_BAND_BELOW
+    }
+
     /// True when `plane` crosses the polygon's own at a sine of at least [`ON_BAND_BELOW`] (not
     /// nearly parallel), so that a polygon within `eps` of it is a sliver thinner than the
     /// tolerance across it rather than a face lying in it.

@@ -53,7 +53,8 @@ impl Tree {
         for (k, id) in ids.into_iter().enumerate() {
             let class = scratch.best.get(k).copied().unwrap_or(Class::Unsettled);
             let poly = arena.poly(id);
-            let parallel = !matches!(class, Class::Front | Class::Back) && !poly.crosses(&plane);
+            let parallel =
+                !matches!(class, Class::Front | Class::Back) && poly.nearly_parallel_to(&plane);
             let split = match class {
                 Class::Front => Split::Front,
                 Class::Back => Split::Back,
