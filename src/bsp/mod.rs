@@ -40,6 +40,16 @@ pub(crate) enum Label {
     Outside,
 }
 
+impl Label {
+    /// The other label.
+    pub(crate) fn flipped(self) -> Label {
+        match self {
+            Label::Inside => Label::Outside,
+            Label::Outside => Label::Inside,
+        }
+    }
+}
+
 /// A child link: another node or a labelled leaf.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Link {

@@ -55,6 +55,13 @@ impl Polygon {
         cos * cos > 1.0 - ON_BAND_BELOW * ON_BAND_BELOW
     }
 
+    /// True when the polygon's plane and a plane of unit normal `normal` count as parallel:
+    /// they cross at a sine below [`PARALLEL_BELOW`], so a polygon within `eps` of the other
+    /// is coplanar with it by `eps` alone.
+    pub(crate) fn parallel_to(&self, normal: DVec3) -> bool {
+        self.plane.normal.cross(normal).length() < PARALLEL_BELOW
+    }
+
     /// True when `plane` crosses the polygon's own at a sine of at least [`ON_BAND_BELOW`] (not
     /// nearly parallel), so that a polygon within `eps` of it is a sliver thinner than the
     /// tolerance across it rather than a face lying in it.
