@@ -212,8 +212,8 @@ fn boolean_at_least(
     let (a_exact, b_exact) = (a.carried_eps() == 0.0, b.carried_eps() == 0.0);
     let (a, a_ids) = parts(a);
     let (b, b_ids) = parts(b);
-    let (a, a_cut) = cut_down(a, &box_b, eps);
-    let (b, b_cut) = cut_down(b, &box_a, eps);
+    let (a, a_cut) = cut_down(a, &box_a, &box_b, eps);
+    let (b, b_cut) = cut_down(b, &box_b, &box_a, eps);
     // Beside a huge operand neither is indexed: the cross-check's huge-box case (Cray) came out
     // with a flat shell through the indexed pass, closed through the full one (not yet
     // understood).
@@ -306,10 +306,16 @@ const HUGE: f64 = 16.0;
 /// a small part) becomes a piece with small, exact corners where the other operand is, and
 /// pieces far away that are classified whole.
 ///
-/// Also says whether anything was cut.
-fn cut_down<'a>(polys: Cow<'a, [Polygon]>, other: &Aabb, eps: f64) -> (Cow<'a, [Polygon]>, bool) {
+/// Also says whether anything was cut. `own`, the polygons' box, answers for all of them where
+/// it is no larger than the reach (a polygon's box lies within it): no polygon's is then asked.
+fn cut_down<'a>(
+    polys: Cow<'a, [Polygon]>,
+    own: &Aabb,
+    other: &Aabb,
+    eps: f64,
+) -> (Cow<'a, [Polygon]>, bool) {
     let reach = HUGE * other.diagonal();
-    if !polys.iter().any(|p| p.bbox().diagonal() > reach) {
+    if own.diagonal() <= reach || !polys.iter().any(|p| p.bbox().diagonal() > reach) {
         return (polys, false);
     }
     let frame = other.expanded(0.25 * other.diagonal() + eps);
