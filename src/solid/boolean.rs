@@ -192,7 +192,7 @@ fn boolean_at_least(
     if let Some(marked) = overran(&a, &b, meter) {
         return marked;
     }
-    let (box_a, box_b) = (a.bbox(), b.bbox());
+    let (box_a, box_b) = (known_bbox(&a), known_bbox(&b));
     let region = Tolerance::region(&box_a, &box_b);
     let needed = Tolerance::for_region(&region)
         .max(Tolerance::new(a.carried_eps()))
@@ -272,6 +272,16 @@ fn boolean_at_least(
     share_near_parallel_vertices(&mut [&mut a_near, &mut b_near], eps);
     let (polygons, index) = assemble((a_far, a_near), (b_far, b_near), op == BoolOp::Difference);
     Solid::with_eps(polygons, eps, lost).with_index(index)
+}
+
+/// The solid's box: the one its vertex ids hold where it was read from a mesh (made then, the
+/// same bit for bit), else made now.
+fn known_bbox(solid: &Solid) -> Aabb {
+    solid
+        .vertex_ids
+        .as_ref()
+        .and_then(|ids| ids.bbox())
+        .unwrap_or_else(|| solid.bbox())
 }
 
 /// The surface of an operand's polygons: on the boxes and hierarchy it brings along where it
