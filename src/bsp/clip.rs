@@ -232,7 +232,15 @@ impl Tree {
                 // Routed along a face of the tree, two tolerances off it: a ray settles it, and
                 // the point is kept from the labels other fragments start from (a segment from
                 // so near the surface labelled a union of grid boxes' fragments wrongly).
-                return surface.label(c + w.side * (2.0 * self.eps));
+                let off = c + w.side * (2.0 * self.eps);
+                let label = surface.label(off);
+                // A face of the surface crossing that one at a small angle may lie between the
+                // fragment and that point, nearer than the tolerance: see
+                // [`Surface::crossings_off`].
+                return match surface.crossings_off(c, off, w.side) {
+                    Some(n) if n % 2 == 1 => label.flipped(),
+                    _ => label,
+                };
             }
             let clear = self
                 .locate_stub(c)

@@ -40,6 +40,16 @@ pub(crate) enum Label {
     Outside,
 }
 
+impl Label {
+    /// The other label.
+    pub(crate) fn flipped(self) -> Label {
+        match self {
+            Label::Inside => Label::Outside,
+            Label::Outside => Label::Inside,
+        }
+    }
+}
+
 /// A child link: another node or a labelled leaf.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Link {
@@ -298,6 +308,68 @@ mod tests {
                 .is_same_or_flipped(sliver.plane())
         );
         assert!(matches!(root.back, Link::Leaf(Label::Inside)));
+    }
+
+    /// A face nearly parallel to a splitter (crossing it at 1e-12 rad), within the tolerance
+    /// of it but in front by the narrow band of nearly parallel planes, goes to the front: the
+    /// wedge between the two planes is there. Its steep neighbour, sharing its corners 5e-13
+    /// and 1e-12 in front but reaching far behind, goes behind by the tolerance; it also goes
+    /// to the front, where its plane ends the wedge. Without it the region in front of the
+    /// splitter and behind the face read inside wherever it reached, beyond the neighbour too.
+    #[test]
+    fn a_steep_face_ending_a_wedge_in_front_of_a_splitter_bounds_it_there() {
+        let eps = 1e-12;
+        let square = |z: f64| {
+            Polygon::new(
+                &[
+                    DVec3::new(-1.0, -1.0, z),
+                    DVec3::new(1.0, -1.0, z),
+                    DVec3::new(1.0, 1.0, z),
+                    DVec3::new(-1.0, 1.0, z),
+                ],
+                0,
+            )
+            .unwrap()
+        };
+        let floor = square(0.0);
+        // 5e-13 … 1e-12 above the floor, rising along x.
+        let lift = |x: f64| 5e-13 + 1e-12 * x;
+        let (a, b) = (
+            DVec3::new(0.0, 0.0, lift(0.0)),
+            DVec3::new(0.5, 0.0, lift(0.5)),
+        );
+        let top = Polygon::new(
+            &[
+                a,
+                b,
+                DVec3::new(0.5, 0.5, lift(0.5)),
+                DVec3::new(0.0, 0.5, lift(0.0)),
+            ],
+            0,
+        )
+        .unwrap();
+        assert!(matches!(top.split(floor.plane(), eps), Split::Front));
+        // Facing −y, from the top's edge down to z = −1.
+        let side = Polygon::new(
+            &[DVec3::new(0.0, 0.0, -1.0), DVec3::new(0.5, 0.0, -1.0), b, a],
+            0,
+        )
+        .unwrap();
+        assert!(side.plane().normal.y < -0.99);
+        let tree = Tree::build(vec![floor.clone(), top, side], eps);
+        let Link::Node(root) = tree.root else {
+            panic!("no node")
+        };
+        assert!(
+            tree.nodes[root as usize]
+                .plane
+                .is_same_or_flipped(floor.plane())
+        );
+        // In the wedge, and beside it beyond the side face (outside).
+        let wedge = DVec3::new(0.25, 0.25, 4e-13);
+        let beside = DVec3::new(0.25, -0.5, 4e-13);
+        assert_eq!(tree.locate(tree.root, wedge), Ok(Label::Inside));
+        assert_eq!(tree.locate(tree.root, beside), Ok(Label::Outside));
     }
 
     /// Issue 12 item 6: a tree's build charges the corners of the pieces its splits cut to the

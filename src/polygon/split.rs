@@ -47,6 +47,21 @@ impl Polygon {
             || !banded(self.plane.normal.cross(plane.normal).length())
     }
 
+    /// True when `plane` crosses the polygon's own at a sine below [`ON_BAND_BELOW`] (or is its
+    /// own): the negation of [`Polygon::crosses`] but for rounding at that bound, from the
+    /// cosine alone (no square root), for a build's every polygon near a splitter.
+    pub(crate) fn nearly_parallel_to(&self, plane: &Plane) -> bool {
+        let cos = self.plane.normal.dot(plane.normal);
+        cos * cos > 1.0 - ON_BAND_BELOW * ON_BAND_BELOW
+    }
+
+    /// True when the polygon's plane and a plane of unit normal `normal` count as parallel:
+    /// they cross at a sine below [`PARALLEL_BELOW`], so a polygon within `eps` of the other
+    /// is coplanar with it by `eps` alone.
+    pub(crate) fn parallel_to(&self, normal: DVec3) -> bool {
+        self.plane.normal.cross(normal).length() < PARALLEL_BELOW
+    }
+
     /// True when `plane` crosses the polygon's own at a sine of at least [`ON_BAND_BELOW`] (not
     /// nearly parallel), so that a polygon within `eps` of it is a sliver thinner than the
     /// tolerance across it rather than a face lying in it.
@@ -210,7 +225,7 @@ impl Polygon {
 /// tessellations); it depends on the vertex and the plane alone, so every polygon holding the
 /// vertex agrees.
 #[inline]
-fn plane_noise(plane: &Plane, v: DVec3) -> f64 {
+pub(crate) fn plane_noise(plane: &Plane, v: DVec3) -> f64 {
     64.0 * f64::EPSILON * ((v - plane.anchor).abs().max_element() + v.abs().max_element())
 }
 

@@ -6,7 +6,7 @@ use super::arena::Arena;
 use super::{Ids, Scratch};
 use crate::bsp::{Kind, Label, Link, Node, Tree};
 use crate::geom::{Aabb, Plane, Side};
-use crate::polygon::{Split, Vertices};
+use crate::polygon::{Split, Vertices, plane_noise};
 
 /// How many polygons a face split tries as splitter.
 const SPLITTER_CANDIDATES: usize = 5;
@@ -47,9 +47,14 @@ impl Tree {
         let splitter: Vertices = arena.poly(chosen).vertices().iter().copied().collect();
         let start = self.polygons.len() as u32;
         let mut own = Aabb::EMPTY;
+        // The vertices within `eps` of the plane of nearly parallel polygons sent to one side
+        // (see `Wedge`).
+        let mut wedge = Wedge::default();
         for (k, id) in ids.into_iter().enumerate() {
             let class = scratch.best.get(k).copied().unwrap_or(Class::Unsettled);
             let poly = arena.poly(id);
+            let parallel =
+                !matches!(class, Class::Front | Class::Back) && poly.nearly_parallel_to(&plane);
             let split = match class {
                 Class::Front => Split::Front,
                 Class::Back => Split::Back,
@@ -81,13 +86,36 @@ impl Tree {
                         }
                     }
                 }
-                Split::Front => front.near.push(id),
-                Split::Back => back.near.push(id),
+                Split::Front => {
+                    if parallel {
+                        wedge.note(poly.vertices(), &plane, eps, Side::Front);
+                    }
+                    front.near.push(id);
+                }
+                Split::Back => {
+                    if parallel {
+                        wedge.note(poly.vertices(), &plane, eps, Side::Back);
+                    }
+                    back.near.push(id);
+                }
                 Split::Spanning { front: f, back: b } => {
+                    if parallel {
+                        wedge.note(f.vertices(), &plane, eps, Side::Front);
+                        wedge.note(b.vertices(), &plane, eps, Side::Back);
+                    }
                     front.near.push(arena.push(f, id));
                     back.near.push(arena.push(b, id));
                 }
             }
+        }
+        // Steep polygons ending at such a vertex on the other side also bound that side.
+        if !wedge.ahead.is_empty() {
+            let follow = wedge.followers(&back.near, arena, &plane, eps, Side::Front);
+            front.near.extend(follow);
+        }
+        if !wedge.behind.is_empty() {
+            let follow = wedge.followers(&front.near, arena, &plane, eps, Side::Back);
+            back.near.extend(follow);
         }
         let node = Node {
             plane,
@@ -101,6 +129,84 @@ impl Tree {
             own,
         };
         (node, front, back)
+    }
+}
+
+/// The vertices within the tolerance of a face node's plane, but off it, of polygons in planes
+/// nearly parallel to it (crossing it at a sine below 10⁻³) that [`Polygon::split`] sent to
+/// one side by its narrow band: `ahead` those in front, `behind` those behind.
+///
+/// Such a polygon, within the tolerance of the plane but judged by the band, bounds a wedge
+/// between its plane and the node's on that side, thinner than the tolerance where it lies but
+/// unbounded along the line where the two planes cross. Its steep neighbours, ending at the
+/// same vertices within the tolerance, are settled by the tolerance alone (`Class::FrontNear`,
+/// `Class::BackNear`) and go to the other side only: the subtree holding the wedge then lacks
+/// the planes that end it, and read a region far beyond its polygons as inside. A 0.125 cube's
+/// top beside a slab's turned 1e-10° (5e-13 above the slab's top plane, the cube's side faces
+/// reaching it within 1.6e-12) left the region above the slab's top and below the cube's
+/// unbounded along y: a bar's top in the cube's plane, 0.06 beyond the cube, was dropped there
+/// as inside (the union's solid 8.1e-4 below its mesh). Such a steep polygon, sharing one of
+/// these vertices (bit for bit, as polygons sharing a corner do), also goes to that side
+/// (`followers`), where its plane ends the wedge.
+#[derive(Default)]
+struct Wedge {
+    ahead: smallvec::SmallVec<[DVec3; 8]>,
+    behind: smallvec::SmallVec<[DVec3; 8]>,
+}
+
+impl Wedge {
+    /// Notes the vertices of a polygon (or piece) sent to `side` that lie on that side within
+    /// `eps`.
+    fn note(&mut self, vertices: &[DVec3], plane: &Plane, eps: f64, side: Side) {
+        for &v in vertices {
+            match off_within(plane, v, eps) {
+                Some(s) if s == side => match side {
+                    Side::Front => self.ahead.push(v),
+                    _ => self.behind.push(v),
+                },
+                _ => {}
+            }
+        }
+    }
+
+    /// Of the polygons `ids` sent to the side opposite `side`, the steep ones reaching into
+    /// `side` within `eps` at a vertex noted on it.
+    fn followers(
+        &self,
+        ids: &[u32],
+        arena: &Arena,
+        plane: &Plane,
+        eps: f64,
+        side: Side,
+    ) -> Vec<u32> {
+        let noted = match side {
+            Side::Front => &self.ahead,
+            _ => &self.behind,
+        };
+        ids.iter()
+            .copied()
+            .filter(|&id| {
+                let poly = arena.poly(id);
+                poly.crosses(plane)
+                    && poly
+                        .vertices()
+                        .iter()
+                        .any(|&v| off_within(plane, v, eps) == Some(side) && noted.contains(&v))
+            })
+            .collect()
+    }
+}
+
+/// The side of `plane` a point within `eps` of it lies on beyond the rounding of its distance
+/// ([`plane_noise`]): `None` for a point farther, or on the plane within that rounding.
+fn off_within(plane: &Plane, v: DVec3, eps: f64) -> Option<Side> {
+    let d = plane.distance(v);
+    if d.abs() > eps || d.abs() <= plane_noise(plane, v) {
+        None
+    } else if d > 0.0 {
+        Some(Side::Front)
+    } else {
+        Some(Side::Back)
     }
 }
 
