@@ -106,9 +106,9 @@ pub(crate) enum Expect {
 
 /// The refusal of a result that should be a closed 2-manifold and is not: a fault, exit 2.
 /// Where it is open, the message says what to change: the open results seen come from faces
-/// of two operands that nearly coincide (a sphere less itself turned 10⁻⁴°: their facets cross at
-/// 1.7·10⁻⁶ rad, and the two cut lines on each facet land a rounding error apart), or from a
-/// part far smaller than what it meets (a cube of side 10⁻²⁰ at a unit cube's corner).
+/// of two operands that nearly coincide (a 256×128 sphere less itself turned 10⁻⁴°: its pole
+/// fans' facets cross their twins and each other nearly in parallel), or from a part far
+/// smaller than what it meets (a cube of side 10⁻²⁰ at a unit cube's corner).
 pub(crate) fn not_written(out: &Path, report: &MeshReport) -> Failure {
     let hint = if report.boundary_edges > 0 {
         "\nAn open result most often comes from faces of the operands that nearly coincide without being \
