@@ -519,13 +519,16 @@ impl CutEdge<'_> {
             let sine = |p: &Plane, q: &Plane| p.normal.cross(q.normal).length();
             if cut.normal.dot(d).abs() < GRAZING * len
                 && sine(own, cut).min(sine(along, cut)) < MEET_BELOW
-                && sine(own, along) >= GRAZING
+                && (sine(own, along) >= GRAZING
+                    || (sine(own, along) >= PARALLEL_BELOW
+                        && sine(own, cut).max(sine(along, cut)).max(sine(own, along)) < MEET_BELOW))
                 && let Some(p) = meet(own, along, cut)
             {
                 // Taken only where it lies on the edge: planes that barely cross (a neighbour
                 // in the polygon's own plane) meet anywhere.
                 let t = (p - a).dot(d) / (len * len);
-                if (0.0..=1.0).contains(&t) && (p - a).cross(d).length() <= eps * len {
+                let reach = eps / sine(own, along).min(1.0);
+                if (0.0..=1.0).contains(&t) && (p - a).cross(d).length() <= reach * len {
                     return p;
                 }
             }
