@@ -83,7 +83,7 @@ const SPECK_MOVE: f64 = 2.0 * MAX_MOVE;
 /// that use an index out of range or a non-finite position (not a mesh this pass can reason
 /// about).
 ///
-/// `scale`, where given, caps the diagonal the thresholds are taken from: a boolean passes 64
+/// `scale`, where given, caps the diagonal the thresholds are taken from: a boolean passes 16
 /// times the size of the region where its operands met, so a part joined to a box 10³⁸ across
 /// keeps its triangles (by the box's diagonal, every one of them would be a needle).
 ///

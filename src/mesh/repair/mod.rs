@@ -77,12 +77,10 @@ const WIDEN_CRACKS: usize = 1024;
 /// shell's own size still sets the needle threshold in `to_mesh`. A union's shell is often a
 /// few times that region (a box joined at one corner of another): judged by the region alone,
 /// a triangle the report counts as a needle by its shell was left (a spike 1.5e-8 long on a
-/// shell 3.5 times the region; at 16, a flat cap 1.8e-4 long and 2.1e-8 high, area 1.9e-12, on
-/// a union 1.72 across whose operands' boxes met in 0.085, 20 times the region: a needle by the
-/// shell, 2.95e-12, not by 16 regions, 1.86e-12). Beyond it the region caps the scale, so a
-/// part joined to a box 10³⁸ across keeps its triangles: the threshold is then at most
-/// 4096 × 10⁻¹² of the region's diagonal squared, triangles under 6.4e-5 of the region across.
-pub(crate) const NEEDLE_REGION_REACH: f64 = 64.0;
+/// shell 3.5 times the region). Beyond it the region caps the scale, so a part joined to a box
+/// 10³⁸ across keeps its triangles: the threshold is then at most 256 × 10⁻¹² of the region's
+/// diagonal squared, triangles under 1.6e-5 of the region across.
+pub(crate) const NEEDLE_REGION_REACH: f64 = 16.0;
 
 /// A polygon as a ring of welded vertex indices, with the polygon it came from.
 #[derive(Clone, Debug)]
