@@ -10,7 +10,7 @@ use std::path::Path;
 
 use bspcsg::read_mesh;
 use common::box_obj_text;
-use common::hostile::{boxes_obj, right_or_refused};
+use common::hostile::{boxes_obj, convex_difference_volume, right_or_refused};
 use common::run::{Scratch, bspcsg, bspcsg_to, refused};
 
 #[test]
@@ -68,6 +68,45 @@ fn a_sphere_less_itself_turned_a_hair_is_right_or_refused() {
         // rad) times the sphere's area.
         assert!(report.volume >= 0.0 && report.volume < 1e-4, "{report}");
     });
+}
+
+/// Item 10's right answer: a 32×16 or 64×32 sphere less itself turned 10⁻⁴° is a film of slivers
+/// up to 3·10⁻⁷ thick, of volume 3.58·10⁻⁷ and 1.81·10⁻⁷ (computed here apart from the kernel by
+/// clipping the convex spheres). The CLI refuses it (951 and 3,678 boundary edges): each operand
+/// cuts a facet where its twin crosses it (at 1.7·10⁻⁶ rad) by interpolating its own edges, so
+/// the two cut lines lie a rounding error over the sine apart (slits a facet long, 10⁻¹¹ to
+/// 10⁻¹⁰ wide: 288 of the 291 boundary loops at 32×16). Cutting such edges at the three-plane
+/// meet up to a sine of 10⁻⁵ (as below 10⁻⁷) closed both with this volume, cross-check 900/900,
+/// but flattened a shell of the kept fork input 8114e14d; from 10⁻⁶ only, 32×16 gets a flat shell
+/// of its own. Not traced further (round 22's notes).
+#[test]
+#[ignore = "open: both operands' cuts of a facet along its twin's crossing line are interpolated \
+            and land 1e-11..1e-10 apart; meets from a sine of 1e-7 to 1e-5 close it but flatten a \
+            shell of fork input 8114e14d"]
+fn a_sphere_less_itself_turned_a_hair_is_closed_with_the_slivers_volume() {
+    let dir = Scratch::new("sphere-turned-right");
+    for segments in [32, 64] {
+        let sphere = bspcsg::Solid::sphere(1.0, segments, segments / 2).unwrap();
+        let turned = sphere
+            .clone()
+            .rotate_axis_angle(bspcsg::glam::DVec3::new(0.3, 1.0, 0.2), 1e-4)
+            .unwrap();
+        let want = convex_difference_volume(&sphere, &turned);
+        let (a, b) = (dir.path("a.obj"), dir.path("b.obj"));
+        bspcsg::write_mesh(&a, &sphere.to_mesh(), &[]).unwrap();
+        bspcsg::write_mesh(&b, &turned.to_mesh(), &[]).unwrap();
+        let out = dir.path(&format!("out{segments}.obj"));
+        bspcsg_to(&["difference".as_ref(), a.as_os_str(), b.as_os_str()], &out).ok();
+        let report = read_mesh(&out).unwrap().report();
+        assert!(report.is_closed_manifold(), "{segments}: {report}");
+        // Off by about the tolerance times the slivers' area (6e-11 of 3.6e-7 at 32x16 with the
+        // meets).
+        assert!(
+            (report.volume - want).abs() < 1e-3 * want,
+            "{segments}: {} vs {want:e}",
+            report.volume
+        );
+    }
 }
 
 #[test]

@@ -110,3 +110,58 @@ pub fn points_obj(points: &[[f64; 3]]) -> String {
     }
     s
 }
+
+/// The volume of `a` less `b` for two convex solids, computed apart from the kernel: `a`'s
+/// faces clipped by each of `b`'s planes in turn (a capped convex polyhedron, its volume by the
+/// divergence theorem), that taken from `a`'s volume. Exact to a few rounding errors of the
+/// volumes (10⁻¹⁵ of them): a check on booleans whose answer is a film of slivers.
+pub fn convex_difference_volume(a: &bspcsg::Solid, b: &bspcsg::Solid) -> f64 {
+    use bspcsg::glam::DVec3;
+    let volume = |faces: &[Vec<DVec3>]| -> f64 {
+        let triples = faces
+            .iter()
+            .flat_map(|f| (1..f.len() - 1).map(move |k| f[0].dot(f[k].cross(f[k + 1]))));
+        triples.sum::<f64>() / 6.0
+    };
+    let mut faces: Vec<Vec<DVec3>> = a.polygons().iter().map(|p| p.vertices().to_vec()).collect();
+    let whole = volume(&faces);
+    for p in b.polygons() {
+        let v = p.vertices();
+        let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
+        let d = n.dot(v[0]);
+        let mut cut = Vec::new();
+        let mut kept = Vec::new();
+        for f in &faces {
+            let mut piece = Vec::new();
+            for i in 0..f.len() {
+                let (x, y) = (f[i], f[(i + 1) % f.len()]);
+                let (dx, dy) = (n.dot(x) - d, n.dot(y) - d);
+                if dx <= 0.0 {
+                    piece.push(x);
+                }
+                if dx == 0.0 {
+                    cut.push(x);
+                }
+                if (dx < 0.0 && dy > 0.0) || (dx > 0.0 && dy < 0.0) {
+                    let at = x + (y - x) * (dx / (dx - dy));
+                    piece.push(at);
+                    cut.push(at);
+                }
+            }
+            if piece.len() >= 3 {
+                kept.push(piece);
+            }
+        }
+        if cut.len() >= 3 {
+            // The cap, counter-clockwise about `n` (its outward normal).
+            let c = cut.iter().copied().sum::<DVec3>() / cut.len() as f64;
+            let u = (cut[0] - c).normalize();
+            let w = n.cross(u);
+            let angle = |q: &DVec3| (*q - c).dot(w).atan2((*q - c).dot(u));
+            cut.sort_by(|x, y| angle(x).total_cmp(&angle(y)));
+            kept.push(cut);
+        }
+        faces = kept;
+    }
+    whole - volume(&faces)
+}
