@@ -84,7 +84,14 @@ impl<'a> Surface<'a> {
     /// apart across an edge of each (see [`apart_across_edges`]). Box overlap alone kept
     /// 2,974 of rocker-arm's 20,088 triangles near the moved copy; the planes leave about 1,200
     /// (the band a cut crosses); the edges' directions leave fewer still (rocker-arm ∪ moved:
-    /// 358.7 → 345.8 M instructions per boolean and mesh, output the same).
+    /// 358.7 → 345.8 M instructions per boolean and mesh, measured when the edge test was
+    /// still asked of every pair, before it was kept to triangle pairs; the output the same on
+    /// the measured speed cases). It is not output-neutral in general: in near-coplanar cases
+    /// with tiny rotations, trees focused on fewer near polygons can label unbuilt cells'
+    /// fragments otherwise. With the round-17/18/20 fork inputs replayed on their operands'
+    /// own triangle meshes, `ca3a7ad3` fails with the edge test (mesh volume
+    /// 0.25694701517087715, solid 0.2569470126909814) and passes without it, `dd18b60b` the
+    /// other way; the failing count is the same either way.
     ///
     /// One descent of both hierarchies together ([`Bvh::visit_pairs_within`]), in parallel over
     /// pieces of this one: walking `other`'s from its root once per leaf of this one entered
@@ -391,8 +398,12 @@ fn beyond(poly: &Polygon, other: &Polygon, apart: f64) -> bool {
 /// within rounding give no direction and are passed over.
 ///
 /// Asked of two triangles only, neither facing along a coordinate axis. Where one does, the
-/// box test covers those directions (a Menger sponge: 9.5 M instructions per boolean, no pair
-/// parted). On the quads of primitives it parted pairs in a fuzz finding (`1037da39` of the
+/// pair is not tested: a pruning missed, not one the box test makes. The triangles
+/// (0,0,0), (1,0,0), (0,1,0) and (0.6,0.6,−1), (0.6,0.6,1), (2,2,0) have overlapping boxes
+/// and each spans the other's plane, yet along (1,1,0)/√2 they lie 0.849 − 0.707 apart; only
+/// this skip keeps them near. Keeping them is sound, just slower, and testing such pairs was
+/// measured not to pay (a Menger sponge: 9.5 M instructions per boolean, no pair parted). On
+/// the quads of primitives it parted pairs in a fuzz finding (`1037da39` of the
 /// round-17 fork run, with tiny rotations) whose result then came out open, 15 boundary
 /// edges: the parting is sound (a gap of 10⁷ tolerances), but the trees focused on fewer near
 /// polygons label their unbuilt cells' fragments otherwise, and that near-coplanar case is
