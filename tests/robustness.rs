@@ -326,3 +326,107 @@ fn cray_union_keeps_the_part_on_the_huge_box() {
     let (top, part) = (mesh.bbox().max.z, l.bbox().max.z.max(r.bbox().max.z));
     assert_eq!(top, part, "the part's top moved");
 }
+
+/// A 2 × 2 × 0.5 slab centred at the origin whose top and bottom are `n` × `n` grids of
+/// triangles (two a cell) and whose sides are strips of two triangles a cell.
+fn grid_slab(n: u32) -> Mesh {
+    let side = n + 1;
+    let at = |i: u32, j: u32, top: bool| (if top { 0 } else { side * side }) + i * side + j;
+    let mut positions = Vec::new();
+    for z in [0.25, -0.25] {
+        for i in 0..=n {
+            for j in 0..=n {
+                let (x, y) = (f64::from(i) / f64::from(n), f64::from(j) / f64::from(n));
+                positions.push(DVec3::new(2.0 * x - 1.0, 2.0 * y - 1.0, z));
+            }
+        }
+    }
+    let mut triangles = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let [a, b, c, d] = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+            let top = |(i, j)| at(i, j, true);
+            let bottom = |(i, j)| at(i, j, false);
+            triangles.push([top(a), top(b), top(c)]);
+            triangles.push([top(a), top(c), top(d)]);
+            triangles.push([bottom(a), bottom(c), bottom(b)]);
+            triangles.push([bottom(a), bottom(d), bottom(c)]);
+        }
+    }
+    let mut ring = Vec::new();
+    ring.extend((0..n).map(|i| (i, 0)));
+    ring.extend((0..n).map(|j| (n, j)));
+    ring.extend((1..=n).rev().map(|i| (i, n)));
+    ring.extend((1..=n).rev().map(|j| (0, j)));
+    for (k, &p) in ring.iter().enumerate() {
+        let q = ring[(k + 1) % ring.len()];
+        let (tp, tq) = (at(p.0, p.1, true), at(q.0, q.1, true));
+        let (bp, bq) = (at(p.0, p.1, false), at(q.0, q.1, false));
+        triangles.push([tq, tp, bp]);
+        triangles.push([tq, bp, bq]);
+    }
+    Mesh::new(positions, triangles)
+}
+
+/// `solid` turned by `degrees` about (0.3, 1, 0) through the origin and moved by
+/// (0.5, 0.25, 0): against an unturned copy the union is 4 − 1.5 · 1.75 · 0.5 = 2.6875 (to
+/// 2e-7 up to 1e-5°, measured where closed).
+fn turned_a_hair(solid: &Solid, degrees: f64) -> Solid {
+    let axis = DVec3::new(0.3, 1.0, 0.0).normalize();
+    let q = bspcsg::glam::DQuat::from_axis_angle(axis, degrees.to_radians());
+    let moved = solid.clone().rotate(q).unwrap();
+    moved.translate(DVec3::new(0.5, 0.25, 0.0)).unwrap()
+}
+
+/// The cuboid ∪ a slab of the same size whose top and bottom are 16 × 16 grids of triangles,
+/// turned a hair: every top triangle of the slab lies within the tolerance of the cuboid's
+/// top, nearly parallel. The same with 1, 2 or 4 cells a side, or turned 1e-6° or more, is
+/// right.
+#[test]
+#[ignore = "open: near-coplanar fine tessellation; measured: turned 1e-9° the union is \
+            2.6874999 but open (108 boundary edges), 1e-8° 2.501 (74), 1e-7° 2.556 (21); want \
+            2.6875 and closed, as at 1e-6° and 1e-5°"]
+fn cuboid_with_a_fine_slab_turned_a_hair_is_closed_and_right() {
+    let plain = Solid::cuboid(DVec3::new(2.0, 2.0, 0.5)).unwrap();
+    let fine = Solid::from_mesh(&grid_slab(16)).unwrap();
+    let mut wrong = Vec::new();
+    for degrees in [1e-9, 1e-8, 1e-7, 1e-6, 1e-5] {
+        let u = &plain | &turned_a_hair(&fine, degrees);
+        let report = u.to_mesh().report();
+        println!("turned {degrees:e}°: union {:.9}, {report}", u.volume());
+        if !report.is_closed_manifold() || (u.volume() - 2.6875).abs() > 1e-6 {
+            wrong.push(format!("{degrees:e}°: {:.9}, {report}", u.volume()));
+        }
+    }
+    assert!(wrong.is_empty(), "{wrong:?}");
+}
+
+/// The fine slab ∪ its own mesh turned a hair (both operands 16 × 16 grids of triangles).
+#[test]
+#[ignore = "open: near-coplanar fine tessellation; measured: turned 1e-9° the union is \
+            2.679584062 and open (12 boundary edges), 1e-7° 2.718847997 and open (6); want \
+            2.6875 and closed"]
+fn tessellated_slab_with_its_tiny_turned_twin_is_closed_and_right() {
+    let fine = Solid::from_mesh(&grid_slab(16)).unwrap();
+    let mut wrong = Vec::new();
+    for degrees in [1e-9, 1e-7] {
+        let twin = Solid::from_mesh(&turned_a_hair(&fine, degrees).to_mesh()).unwrap();
+        let u = &fine | &twin;
+        let report = u.to_mesh().report();
+        println!("turned {degrees:e}°: union {:.9}, {report}", u.volume());
+        if !report.is_closed_manifold() || (u.volume() - 2.6875).abs() > 1e-6 {
+            wrong.push(format!("{degrees:e}°: {:.9}, {report}", u.volume()));
+        }
+    }
+    assert!(wrong.is_empty(), "{wrong:?}");
+}
+
+/// The slab helper above: closed, volume 2, at every grid size the ignored tests use.
+#[test]
+fn grid_slabs_are_closed_with_volume_two() {
+    for n in [1, 2, 16] {
+        let mesh = grid_slab(n);
+        assert_clean(&mesh, &format!("slab {n}"));
+        assert!((mesh.volume() - 2.0).abs() < 1e-12, "{}", mesh.volume());
+    }
+}

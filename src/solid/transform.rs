@@ -9,7 +9,10 @@ use crate::geom::{MAX_COORDINATE, Plane, Tolerance, euler_degrees};
 use crate::polygon::{Polygon, Vertices};
 
 impl Solid {
-    /// The solid turned inside out: every polygon flipped (the complement, for booleans).
+    /// The solid turned inside out: every polygon flipped, so each faces the other way and
+    /// [`volume`](Solid::volume) is negated. It is not a complement as a boolean operand: the
+    /// booleans do not read it as the unbounded outside (the flipped unit cube ∩ a 3-cube
+    /// around it does not give 26); for a complement within a bound, take a difference.
     #[must_use]
     pub fn flipped(mut self) -> Self {
         self.index = None;
@@ -208,4 +211,27 @@ fn finite_vec(name: &'static str, v: DVec3) -> Result<()> {
 fn normalized(q: DQuat) -> Option<DQuat> {
     let len = q.length();
     (len.is_finite() && len > 0.0).then(|| q / len)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::Solid;
+
+    /// What [`Solid::flipped`] documents: the same polygons facing the other way, the volume
+    /// negated, and flipping twice gives the solid back.
+    #[test]
+    fn flipped_turns_every_polygon_and_negates_the_volume() {
+        let cube = Solid::cube(1.0).unwrap();
+        let flipped = cube.clone().flipped();
+        assert_eq!(flipped.polygon_count(), cube.polygon_count());
+        assert!(
+            (flipped.volume() + 1.0).abs() < 1e-12,
+            "{}",
+            flipped.volume()
+        );
+        for (p, q) in cube.polygons().iter().zip(flipped.polygons()) {
+            assert!((p.plane().normal + q.plane().normal).length() < 1e-12);
+        }
+        assert!((flipped.flipped().volume() - 1.0).abs() < 1e-12);
+    }
 }
