@@ -975,7 +975,7 @@ fn the_crossing_line_band_leaves_a_flat_shell() {
 ///
 /// 22b67390, 2a7dd67a and 97cf8f64 pass since a fragment routed along a face of the tree and
 /// labelled by a ray from two tolerances off it counts a face crossing that one at a small
-/// angle between the two points (`Surface::crossings_off` in `bsp/surface.rs`): the point off
+/// angle between the two points (`Surface::crossings_off` in `bsp/surface/ray.rs`): the point off
 /// the face lay beyond the other operand's nearly parallel face, 2.7e-13 away, and the
 /// fragment, inside by the band that cut it on their crossing line, read outside, while that
 /// face, outside the fragment's operand by the band, was dropped too (traced on round 18's

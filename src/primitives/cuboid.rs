@@ -6,6 +6,17 @@ use super::{face, positive};
 use crate::error::Result;
 use crate::polygon::Polygon;
 
+/// A box's six faces as corner indices whose bits say which end of each axis the corner takes
+/// (1 = +x, 2 = +y, 4 = +z), each face counter-clockwise from outside.
+pub(crate) const BOX_FACES: [[usize; 4]; 6] = [
+    [0, 4, 6, 2], // -x
+    [1, 3, 7, 5], // +x
+    [0, 1, 5, 4], // -y
+    [2, 6, 7, 3], // +y
+    [0, 2, 3, 1], // -z
+    [4, 5, 7, 6], // +z
+];
+
 /// The six faces of an axis-aligned box of the given edge lengths, centred at the origin.
 pub(crate) fn cuboid(size: DVec3) -> Result<Vec<Polygon>> {
     positive("size.x", size.x)?;
@@ -28,16 +39,7 @@ pub(crate) fn cuboid_between(lo: DVec3, hi: DVec3) -> Result<Vec<Polygon>> {
             if i & 4 != 0 { hi.z } else { lo.z },
         )
     };
-    // Corner index bits: 1 = +x, 2 = +y, 4 = +z; each face counter-clockwise from outside.
-    const FACES: [[usize; 4]; 6] = [
-        [0, 4, 6, 2], // -x
-        [1, 3, 7, 5], // +x
-        [0, 1, 5, 4], // -y
-        [2, 6, 7, 3], // +y
-        [0, 2, 3, 1], // -z
-        [4, 5, 7, 6], // +z
-    ];
-    FACES
+    BOX_FACES
         .iter()
         .map(|f| face(f.map(corner).as_slice()))
         .collect()

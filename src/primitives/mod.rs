@@ -6,6 +6,9 @@ mod cuboid;
 mod polyhedron;
 mod revolved;
 
+/// The box's face table, for tests that bend a box's corners.
+#[cfg(test)]
+pub(crate) use cuboid::BOX_FACES;
 pub(crate) use cuboid::{cuboid, cuboid_between};
 pub(crate) use polyhedron::polyhedron;
 pub(crate) use revolved::{frustum, frustum_between, sphere, torus};
