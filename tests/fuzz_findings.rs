@@ -654,7 +654,7 @@ fn mesh_volume_off_at_step_3_since_the_crossing_line_judgement() {
 /// Traced further (round 22): that first point, 3.3e-11 inside the box's −x face, was labelled
 /// by a segment from a point of the neighbouring cell outside it (right), which crosses that
 /// face running along it at 8.6e-10 rad; `crossing` took any plane within 1e-9 of the
-/// direction for parallel and the crossing for a miss. Counted now (`bsp/surface.rs`): passes.
+/// direction for parallel and the crossing for a miss. Counted now (`bsp/surface/ray.rs`): passes.
 #[test]
 fn nicked_box_less_a_slab_turned_1e_6_degrees() {
     replay_file("nicked_box_less_slab_turned_1e-6");
@@ -843,9 +843,7 @@ fn the_round_18_fork_run_near_coplanar_inputs() {
 /// the point off it (`Surface::crossings_off`; see [`FORK_20_PASSING`]); and the inputs of
 /// [`FORK_18_SLIVER_ENDS`] and [`FORK_18_NEAR_PLANES`].
 ///
-/// Also passing since 5982a0f, 2052e97 (the wedge; fragments labelled off a face), 95e7309 (a
-/// segment nearly parallel to a face still crosses it) and 57fae4e, 99b9509 (edge cuts at the
-/// shared three-plane meet below `MEET_BELOW`): the inputs not named above, not traced one by one.
+/// Also passing since the changes named at [`FORK_PASSING`]: the inputs not named above.
 const FORK_18_PASSING: [&str; 48] = [
     "02530f35", "0790ea94", "0827a164", "0d0928b6", "10073393", "1520a690", "1790af98", "1e4064b4",
     "20453056", "3113dfce", "37ff3bf3", "3900a850", "3cc49f00", "5179ded6", "523bd25f", "540b19a9",
@@ -996,9 +994,7 @@ fn the_crossing_line_band_leaves_a_flat_shell() {
 /// cube turned 1e-9° ∪ a cube at the same place, ∩ that cube (step 2: 4.8e-6 below). 97cf8f64:
 /// a box turned 1e-10° ∪ a cube ∪ a cylinder ∪ a bar ∪ a box (step 3: 1.4e-3 below).
 ///
-/// Also passing since 5982a0f, 2052e97 (the wedge; fragments labelled off a face), 95e7309 (a
-/// segment nearly parallel to a face still crosses it) and 57fae4e, 99b9509 (edge cuts at the
-/// shared three-plane meet below `MEET_BELOW`): the inputs not named above, not traced one by one.
+/// Also passing since the changes named at [`FORK_PASSING`]: the inputs not named above.
 const FORK_20_PASSING: [&str; 67] = [
     "060752d1", "0bebd350", "1194b103", "1d6b6b28", "1d7d9f8a", "1f854764", "20254c75", "22568913",
     "22b67390", "24057533", "2a7dd67a", "2f1db746", "394fbf5b", "43f8dc80", "44bbfb06", "45e7cb01",

@@ -474,8 +474,9 @@ fn banded(sine: f64) -> bool {
 /// (Havocglass8's flat neighbours cross the other model's at 5e-7 to 5e-5 rad) no vertex is
 /// well defined, and only the band and the weld agree (measured when this bound also set where
 /// edges were cut at meets: 9 boundary edges with meets up to 1e-3, 3 up to 1e-6, none at
-/// 1e-7). With edge cuts at meets up to [`MEET_BELOW`] (never for an edge whose own two planes
-/// cross below [`GRAZING`], see `CutEdge::cut`), Havocglass8's booleans stay closed and right.
+/// 1e-7). With edge cuts at meets up to [`MEET_BELOW`] (for an edge whose own two planes cross
+/// below [`GRAZING`] only where all three planes are nearly parallel, see `CutEdge::cut`),
+/// Havocglass8's booleans stay closed and right.
 const NEAR_PARALLEL: f64 = 1e-7;
 
 /// Below this sine of the angle between a cutting plane and the polygon's plane or the plane
@@ -493,6 +494,11 @@ const NEAR_PARALLEL: f64 = 1e-7;
 /// and 64×32 spheres less themselves turned 10⁻⁵° to 10⁻²° come out closed, their volume
 /// within 2·10⁻⁴ of the true one (10⁻⁵° to 3·10⁻⁴° were open before). Above 10⁻⁵ an
 /// interpolation is off by under 10⁻¹¹ (10⁻¹⁶ over the sine), within the weld.
+///
+/// An edge whose own two planes cross below [`GRAZING`] is cut at the meet too where all three
+/// planes cross below this bound: three collinear edges of one crossing line cut by a third
+/// face (fork input 8114e14d), interpolated, scattered one point over 1.2e-7 and left a flat
+/// shell; the meet of the same three planes is the same point for each.
 ///
 /// Vertices are still judged against the crossing line only below [`NEAR_PARALLEL`] (see
 /// `crossing_at`): the meet here only places the cut.
@@ -517,19 +523,23 @@ impl CutEdge<'_> {
             let d = b - a;
             let len = d.length();
             let sine = |p: &Plane, q: &Plane| p.normal.cross(q.normal).length();
-            if cut.normal.dot(d).abs() < GRAZING * len
-                && sine(own, cut).min(sine(along, cut)) < MEET_BELOW
-                && (sine(own, along) >= GRAZING
-                    || (sine(own, along) >= PARALLEL_BELOW
-                        && sine(own, cut).max(sine(along, cut)).max(sine(own, along)) < MEET_BELOW))
-                && let Some(p) = meet(own, along, cut)
-            {
-                // Taken only where it lies on the edge: planes that barely cross (a neighbour
-                // in the polygon's own plane) meet anywhere.
-                let t = (p - a).dot(d) / (len * len);
-                let reach = eps / sine(own, along).min(1.0);
-                if (0.0..=1.0).contains(&t) && (p - a).cross(d).length() <= reach * len {
-                    return p;
+            if cut.normal.dot(d).abs() < GRAZING * len {
+                let (own_cut, along_cut) = (sine(own, cut), sine(along, cut));
+                let own_along = sine(own, along);
+                // Either the edge's own two planes cross clearly, or all three planes are
+                // nearly parallel (the same three planes, so the same bits in any order).
+                let meets = own_cut.min(along_cut) < MEET_BELOW
+                    && (own_along >= GRAZING
+                        || (own_along >= PARALLEL_BELOW
+                            && own_cut.max(along_cut).max(own_along) < MEET_BELOW));
+                if meets && let Some(p) = meet(own, along, cut) {
+                    // Taken only where it lies on the edge: planes that barely cross (a
+                    // neighbour in the polygon's own plane) meet anywhere.
+                    let t = (p - a).dot(d) / (len * len);
+                    let reach = eps / own_along.min(1.0);
+                    if (0.0..=1.0).contains(&t) && (p - a).cross(d).length() <= reach * len {
+                        return p;
+                    }
                 }
             }
         }

@@ -291,6 +291,21 @@ mod tests {
     use crate::primitives::BOX_FACES;
     use crate::solid::Solid;
 
+    /// The cube [0, 1]³ with each corner moved by `at`, in the cuboid's faces.
+    fn unit_cube(at: impl Fn(DVec3) -> DVec3) -> Solid {
+        let v: Vec<DVec3> = (0..8)
+            .map(|i| {
+                at(DVec3::new(
+                    (i & 1) as f64,
+                    (i >> 1 & 1) as f64,
+                    (i >> 2 & 1) as f64,
+                ))
+            })
+            .collect();
+        let quads = BOX_FACES.map(|f| f.map(|i| i as u32));
+        Solid::polyhedron(&v, &quads).unwrap()
+    }
+
     #[test]
     fn parity_and_winding_agree_on_a_torus() {
         let t = Solid::torus(1.0, 0.3, 32, 16).unwrap();
@@ -471,16 +486,7 @@ mod tests {
     #[test]
     fn a_face_nearly_parallel_between_a_fragment_and_its_offset_point_is_counted() {
         let eps = 1e-12;
-        let solid = |tilt: f64| {
-            let v: Vec<DVec3> = (0..8)
-                .map(|i| {
-                    let (x, y, z) = ((i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2 & 1) as f64);
-                    DVec3::new(x + tilt * x * y, y, z)
-                })
-                .collect();
-            let quads = BOX_FACES.map(|f| f.map(|i| i as u32));
-            Solid::polyhedron(&v, &quads).unwrap()
-        };
+        let solid = |tilt: f64| unit_cube(|p| DVec3::new(p.x + tilt * p.x * p.y, p.y, p.z));
         let c = DVec3::new(1.0, 0.5, 0.5);
         let off = c + DVec3::X * (2.0 * eps);
         let turned = solid(2e-12);
@@ -497,18 +503,7 @@ mod tests {
     /// along it flips.
     #[test]
     fn a_segment_crossing_a_face_at_a_grazing_angle_counts_it() {
-        let v: Vec<DVec3> = (0..8)
-            .map(|i| DVec3::new((i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2 & 1) as f64))
-            .collect();
-        let quads: [[u32; 4]; 6] = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        let cube = Solid::polyhedron(&v, &quads).unwrap();
+        let cube = unit_cube(|p| p);
         let s = Surface::new(cube.polygons(), 1e-12);
         let inside = DVec3::new(1.0 - 3e-11, 0.5, 0.5);
         let outside = DVec3::new(1.0 + 4e-10, 0.5, 0.0);
