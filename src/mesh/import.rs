@@ -6,7 +6,7 @@ use crate::error::{Error, MeshDefect, Result};
 use crate::geom::is_zero_area;
 use crate::hash::{KeyedBuild, KeyedHashMap};
 use crate::mesh::repair::Links;
-use crate::polygon::{Polygon, Vertices};
+use crate::polygon::{Polygon, Vertices, share_face_planes};
 use crate::topology::{check_closed, check_face_indices, check_finite};
 
 /// How [`Solid::from_mesh_with`](crate::Solid::from_mesh_with) treats its input. The default is strict; see
@@ -209,8 +209,9 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
     }
     let mut discs = links.is_some();
     let polygons = if options.merge_coplanar {
-        let (polygons, chords_inside) = merge_coplanar(mesh, &triangles, links.as_ref());
+        let (mut polygons, chords_inside) = merge_coplanar(mesh, &triangles, links.as_ref());
         discs &= chords_inside;
+        share_face_planes(&mut polygons, merge_tolerance(mesh));
         polygons
     } else {
         triangles.into_iter().flatten().collect()
@@ -220,6 +221,13 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
         polygons,
         discs_if_apart,
     })
+}
+
+/// How far off a merged polygon's plane a corner may lie: 10⁻¹² of the mesh's diagonal, or
+/// the rounding of its largest coordinates.
+fn merge_tolerance(mesh: &Mesh) -> f64 {
+    let bbox = mesh.bbox();
+    (1e-12 * bbox.diagonal()).max(64.0 * f64::EPSILON * bbox.max_abs())
 }
 
 /// A corner of a merged polygon turns left by more than this sine of its angle: strictly convex
@@ -301,8 +309,7 @@ struct Merger<'a> {
 impl<'a> Merger<'a> {
     fn new(mesh: &'a Mesh, triangles: &'a [Option<Polygon>]) -> Self {
         let (tris, pos) = (&mesh.triangles, &mesh.positions);
-        let bbox = mesh.bbox();
-        let tol = (1e-12 * bbox.diagonal()).max(64.0 * f64::EPSILON * bbox.max_abs());
+        let tol = merge_tolerance(mesh);
         let mut owner = EdgeOwners::with_capacity_and_hasher(3 * tris.len(), KeyedBuild::default());
         for (t, tri) in tris
             .iter()

@@ -8,10 +8,12 @@ use smallvec::SmallVec;
 use crate::geom::{Aabb, Plane};
 
 mod axis;
+mod faces;
 mod planes;
 mod shared;
 mod split;
 
+pub(crate) use faces::share_face_planes;
 pub(crate) use planes::attach_edge_planes_among;
 pub(crate) use shared::share_near_parallel_vertices;
 pub(crate) use split::plane_noise;

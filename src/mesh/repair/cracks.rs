@@ -105,10 +105,12 @@ pub(super) fn close_flat_cracks(
             continue;
         }
         let source = sources[owner[&edges[0]] as usize];
+        // A rim of three edges bounds one triangle: other triangles at its corners hold it.
+        let corners = (tris.len() == 1).then_some(&fan[..]);
         for tri in tris {
             // A fill triangle that is the reverse of one already there would make the two a
             // sheet of no thickness: the loop was a flap's rim, and the flap goes instead.
-            if let Some(t) = flap(&owner, &uses, triangles, tri) {
+            if let Some(t) = flap(&owner, &uses, triangles, tri, corners) {
                 cancelled.push(t);
             } else {
                 sources.push(source);
@@ -131,8 +133,16 @@ pub(super) fn close_flat_cracks(
 }
 
 /// The triangle already in `triangles` that runs exactly against `tri`, if any, and that other
-/// triangles hold by an edge too: a flap on the surface. A lone face's triangles are not flaps
-/// (taken away, the face would vanish, and an open result become an empty one).
+/// triangles hold by an edge too, or, where `corners` (where each vertex's triangles start in
+/// the list of them, as `fan` in [`close_flat_cracks`]) is given for a rim of one triangle,
+/// at a corner: a flap on the surface. A lone face's triangles are
+/// not flaps (taken away, the face would vanish, and an open result become an empty one).
+///
+/// A flap held by its corners alone: a cuboid ∪ a slab whose top is a grid of triangles,
+/// turned 1e-9° (both of one source), left one triangle of the slab's top 0.075 long and
+/// 5e-7 high on the crossing line of the two tops, a grid vertex the line passes within
+/// rounding of at its apex, its other corners on the surface around it, which closed without
+/// it; none of its edges was anyone else's. Filled, it and its reverse were a flat shell.
 ///
 /// Looked for across each of `tri`'s three edges: `owner` keeps one triangle per half-edge, and
 /// a flap's edge on the surface is crowded, often used the same way by a triangle of the
@@ -145,20 +155,27 @@ fn flap(
     uses: &FxHashMap<(u32, u32), i32>,
     triangles: &[[u32; 3]],
     tri: [u32; 3],
+    corners: Option<&[u32]>,
 ) -> Option<u32> {
     let held = |a: u32, b: u32| {
         uses.get(&(a, b)).copied().unwrap_or(0) + uses.get(&(b, a)).copied().unwrap_or(0)
     };
-    if (0..3).all(|k| held(tri[k], tri[(k + 1) % 3]) < 3) {
+    let by_edge = (0..3).any(|k| held(tri[k], tri[(k + 1) % 3]) >= 3);
+    if !by_edge && corners.is_none() {
         return None;
     }
     let reversed = [tri[0], tri[2], tri[1]];
     let turns = |other: [u32; 3]| {
         (0..3).any(|k| other == [reversed[k], reversed[(k + 1) % 3], reversed[(k + 2) % 3]])
     };
-    (0..3)
+    let t = (0..3)
         .filter_map(|k| owner.get(&(tri[(k + 1) % 3], tri[k])).copied())
-        .find(|&t| turns(triangles[t as usize]))
+        .find(|&t| turns(triangles[t as usize]))?;
+    let at_corner = |fan: &[u32]| {
+        tri.iter()
+            .any(|&v| fan[v as usize + 1] - fan[v as usize] > 1)
+    };
+    (by_edge || corners.is_some_and(at_corner)).then_some(t)
 }
 
 /// The triangles already there that make up a flap with `rim` (a loop of unpaired half-edges)
@@ -277,5 +294,27 @@ mod tests {
         let mut mesh = (triangles, vec![0; 6]);
         assert_eq!(close_flat_cracks(&positions, &mut mesh, 1e-12), 2);
         assert_eq!(mesh.0, tetrahedron.to_vec());
+    }
+
+    /// A lone triangle on a tetrahedron's face, sharing two of its corners (0 and 1) but none
+    /// of its edges (its apex 4 is its own): held at its corners, it is taken away, not
+    /// filled into a flat shell with its reverse. Alone, a triangle is a face and is filled.
+    #[test]
+    fn a_triangle_held_at_its_corners_alone_is_taken_away() {
+        let positions = vec![
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::Y,
+            DVec3::Z,
+            DVec3::new(0.5, 1e-3, 0.0),
+        ];
+        let tetrahedron = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        let triangles: Vec<[u32; 3]> = tetrahedron.iter().chain(&[[0, 4, 1]]).copied().collect();
+        let mut mesh = (triangles, vec![0; 5]);
+        assert_eq!(close_flat_cracks(&positions, &mut mesh, 1e-12), 1);
+        assert_eq!(mesh.0, tetrahedron.to_vec());
+        let mut alone = (vec![[0, 4, 1]], vec![0]);
+        assert_eq!(close_flat_cracks(&positions, &mut alone, 1e-12), 0);
+        assert_eq!(alone.0.len(), 2);
     }
 }

@@ -1,0 +1,113 @@
+//! One plane for all the polygons of one flat face of a mesh.
+
+use crate::geom::Plane;
+use crate::hash::{KeyedHashMap, key};
+
+use super::Polygon;
+use super::split::PARALLEL_BELOW;
+
+/// Gives the polygons of each flat face one plane, bit for bit: that of the first polygon of
+/// the face (in the order given). A face is grown across edges (the same ends bit for bit,
+/// the other way round) from that polygon to neighbours of the same source facing the same
+/// way, whose planes cross its plane at a sine below [`PARALLEL_BELOW`] and all of whose
+/// vertices lie within `tol` of it: the triangles of a tessellated flat face, which merge into
+/// several polygons where a larger one would not be strictly convex (a grid's cells), each
+/// with its own Newell plane, the same plane up to rounding.
+///
+/// A boolean cuts such a face on one line only if its polygons share one plane. Where another
+/// operand's face crosses it at a tiny angle α, the crossing line of each polygon's plane moves
+/// by the rounding of that plane's position over α: a 2 × 2 slab whose top is a 16 × 16 grid,
+/// turned 1e-9° against a cuboid's top (1.7e-11 rad), had each grid cell's piece cut on its own
+/// line, up to 4e-7 from the cuboid's cut on the plane its tree kept for the whole top (108
+/// boundary edges); so too where the slab's sides met the crossing lines at 1e-8°, the cut
+/// points on three planes keyed by different planes of one face (see
+/// `share_near_parallel_vertices`).
+pub(crate) fn share_face_planes(polygons: &mut [Polygon], tol: f64) {
+    let corners = polygons.iter().map(|p| p.vertices.len()).sum();
+    let mut owner: KeyedHashMap<([u64; 3], [u64; 3]), u32> =
+        KeyedHashMap::with_capacity_and_hasher(corners, Default::default());
+    for (i, p) in polygons.iter().enumerate() {
+        let v = &p.vertices;
+        for k in 0..v.len() {
+            owner.insert((key(v[k]), key(v[(k + 1) % v.len()])), i as u32);
+        }
+    }
+    let mut face = vec![u32::MAX; polygons.len()];
+    let mut stack = Vec::new();
+    for first in 0..polygons.len() {
+        if face[first] != u32::MAX {
+            continue;
+        }
+        face[first] = first as u32;
+        let (plane, source) = (polygons[first].plane, polygons[first].source);
+        stack.push(first);
+        while let Some(i) = stack.pop() {
+            let v = &polygons[i].vertices;
+            for k in 0..v.len() {
+                let Some(&j) = owner.get(&(key(v[(k + 1) % v.len()]), key(v[k]))) else {
+                    continue;
+                };
+                let j = j as usize;
+                if face[j] == u32::MAX && same_face(&polygons[j], &plane, source, tol) {
+                    face[j] = first as u32;
+                    stack.push(j);
+                }
+            }
+        }
+    }
+    for i in 0..polygons.len() {
+        let first = face[i] as usize;
+        if first != i {
+            polygons[i].plane = polygons[first].plane;
+        }
+    }
+}
+
+/// Whether `p` lies in `plane` of a face of `source`, up to rounding (see
+/// [`share_face_planes`]).
+fn same_face(p: &Polygon, plane: &Plane, source: u32, tol: f64) -> bool {
+    p.source == source
+        && p.plane.normal.dot(plane.normal) > 0.0
+        && p.plane.normal.cross(plane.normal).length() < PARALLEL_BELOW
+        && p.vertices.iter().all(|&v| plane.distance(v).abs() <= tol)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    fn quad(corners: [[f64; 3]; 4], source: u32) -> Polygon {
+        let v: Vec<DVec3> = corners.into_iter().map(DVec3::from).collect();
+        Polygon::new(&v, source).unwrap()
+    }
+
+    /// Two quads of one flat face share the first one's plane (their anchors differ before);
+    /// a neighbour of another source, one turned 1e-9 rad, and one across no shared edge keep
+    /// their own.
+    #[test]
+    fn the_polygons_of_one_flat_face_share_a_plane() {
+        let a = quad([[0., 0., 1.], [1., 0., 1.], [1., 1., 1.], [0., 1., 1.]], 0);
+        let b = quad([[1., 0., 1.], [2., 0., 1.], [2., 1., 1.], [1., 1., 1.]], 0);
+        let other = quad([[0., 1., 1.], [1., 1., 1.], [1., 2., 1.], [0., 2., 1.]], 1);
+        let tilt = 1e-9;
+        let turned = quad(
+            [
+                [1., -1., 1. - tilt],
+                [2., -1., 1. - tilt],
+                [2., 0., 1.],
+                [1., 0., 1.],
+            ],
+            0,
+        );
+        let apart = quad([[5., 5., 1.], [6., 5., 1.], [6., 6., 1.], [5., 6., 1.]], 0);
+        assert_ne!(a.plane, b.plane);
+        let mut polygons = vec![a.clone(), b, other.clone(), turned.clone(), apart.clone()];
+        share_face_planes(&mut polygons, 1e-12);
+        assert_eq!(polygons[1].plane, a.plane);
+        assert_eq!(polygons[0].plane, a.plane);
+        assert_eq!(polygons[2].plane, other.plane);
+        assert_eq!(polygons[3].plane, turned.plane);
+        assert_eq!(polygons[4].plane, apart.plane);
+    }
+}
