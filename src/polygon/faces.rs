@@ -4,7 +4,7 @@ use crate::geom::Plane;
 use crate::hash::{KeyedHashMap, key};
 
 use super::Polygon;
-use super::split::PARALLEL_BELOW;
+use super::side::PARALLEL_BELOW;
 
 /// Gives the polygons of each flat face one plane, bit for bit: that of the first polygon of
 /// the face (in the order given). A face is grown across edges (the same ends bit for bit,

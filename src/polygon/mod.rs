@@ -11,12 +11,13 @@ mod axis;
 mod faces;
 mod planes;
 mod shared;
+mod side;
 mod split;
 
 pub(crate) use faces::share_face_planes;
 pub(crate) use planes::attach_edge_planes_among;
 pub(crate) use shared::share_near_parallel_vertices;
-pub(crate) use split::plane_noise;
+pub(crate) use side::plane_noise;
 
 /// Vertex storage: quads and their split fragments stay inline.
 pub(crate) type Vertices = SmallVec<[DVec3; 6]>;
