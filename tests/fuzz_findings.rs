@@ -413,7 +413,7 @@ fn needle_where_a_bar_meets_a_cube_turned_a_hundredth_of_a_degree() {
 /// plane. The union's volume was 0.1249998, 2e-7 below either operand's: the near-coplanar kind
 /// (faces 1.7e-8 rad apart), corners a rounding error off the twin faces counted as on them.
 /// Fixed by the narrower noise for vertices not computed on the cutting plane (`given_noise`,
-/// `polygon/split.rs`).
+/// `polygon/side.rs`).
 #[test]
 fn union_of_a_slab_and_itself_turned_a_hair_loses_volume() {
     replay(&[

@@ -43,9 +43,9 @@ fn cube_minus_cube_rotated_a_millionth_degree() {
 /// dA over the cube's faces = 1.4576096e-2 × θ in degrees (quadrature). At 3e-4° and 1e-4° (faces
 /// 5e-6 and 1.7e-6 rad apart, each cube's corners 1e-11 and 1e-12 off the other's faces) a vertex
 /// counts as on a nearly parallel plane only near the crossing line (`ON_BAND_BELOW` in
-/// `polygon/split.rs`), and both the solid and the mesh have the first-order volume. At 1e-5° the
+/// `polygon/side.rs`), and both the solid and the mesh have the first-order volume. At 1e-5° the
 /// corners lie 1.4e-14 off the twin faces, inside the noise of a point computed on the plane but
-/// not of one given (`given_noise` in `polygon/split.rs`): the polygons' volume is 2.5e-4 above the
+/// not of one given (`given_noise` in `polygon/side.rs`): the polygons' volume is 2.5e-4 above the
 /// first order (12.6 % when a corner counted as on the twin face), checked to 1e-3. From 3e-6°
 /// down the faces cross below 1e-7 rad (`NEAR_PARALLEL`), and a vertex near the twin's plane is
 /// judged across the crossing line both operands compute (`Crossing` in `polygon/planes.rs`):
@@ -93,7 +93,7 @@ fn cube_minus_cube_turned_about_a_skew_axis() {
 
 /// A vertex counts as on a nearly parallel plane within the noise of a point computed on it
 /// where an edge beside it lies in that plane, and within the narrower noise of a given point
-/// elsewhere (`polygon/split.rs`), so one vertex can be judged two ways in two polygons. The
+/// elsewhere (`polygon/side.rs`), so one vertex can be judged two ways in two polygons. The
 /// polygon with an edge in the plane lies on one side of it and is never cut there, so this
 /// can only leave a T-junction for `to_mesh`, never a crack: a cube and itself turned by 1e-3°
 /// … 1e-7° about five axes, by each operation, close (before the narrower noise, (1, 1, 1) at

@@ -10,11 +10,12 @@ use crate::geom::{Aabb, Plane};
 mod axis;
 mod planes;
 mod shared;
+mod side;
 mod split;
 
 pub(crate) use planes::attach_edge_planes_among;
 pub(crate) use shared::share_near_parallel_vertices;
-pub(crate) use split::plane_noise;
+pub(crate) use side::plane_noise;
 
 /// Vertex storage: quads and their split fragments stay inline.
 pub(crate) type Vertices = SmallVec<[DVec3; 6]>;
