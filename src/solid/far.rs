@@ -1,6 +1,8 @@
 //! The polygons a boolean keeps whole, away from the other operand, numbered by vertex so that
 //! `to_mesh` repairs only around the cut (see [`Indexed`]).
 
+use smallvec::SmallVec;
+
 use crate::bsp::{Label, Surface};
 use crate::disjoint_sets::DisjointSets;
 use crate::mesh::repair::Indexed;
@@ -33,8 +35,10 @@ pub(super) struct Far {
 /// With `flat` (the weld distance of `to_mesh`, for an operand whose polygons share their
 /// vertices bit for bit), they are also sorted into core and rim: a kept polygon is core when
 /// none of its vertices is used by a polygon near the other surface (then every polygon around
-/// them is far, in the same group, and kept) and none is shared by two polygons of one source
-/// that `to_mesh` could merge as coplanar (each's corners within `flat` of the other's plane).
+/// them is far, in the same group, and kept) and none is a vertex `to_mesh` could drop from a
+/// coplanar region: around each, the polygons that `to_mesh` could merge as coplanar (one
+/// source, each's corners within `flat` of the other's plane) fall into at least three such
+/// classes (see [`merge_classes`]), or no two of them could merge at all.
 pub(super) fn keep_far(
     polys: &[Polygon],
     ids: &VertexIds,
@@ -111,7 +115,7 @@ pub(super) fn keep_far(
             false
         }
         Open::Unknown => {
-            let any = merges_around(id);
+            let any = merge_classes(polys, ids.around(id), flat) < 3;
             open[id as usize] = if any { Open::Yes } else { Open::No };
             any
         }
@@ -139,6 +143,51 @@ pub(super) fn keep_far(
         fans: ids.fans(),
         least_fan: ids.least_fan(),
     }
+}
+
+/// How many classes the polygons `star` (those around one vertex) fall into when every two that
+/// `to_mesh` could merge as coplanar ([`mergeable`]) are put in one; `usize::MAX` where no two
+/// could merge.
+///
+/// Around a vertex among three classes or more, the regions `to_mesh` forms meet along at
+/// least three boundary edges to three distinct neighbours, and a boundary vertex is dropped
+/// only where it has exactly two (see `mesh::repair::regions`): it stays a corner of every
+/// region it is on. Where every corner of the polygons is such a vertex (or one no two
+/// polygons around could merge at), no vertex lies inside a region nor is dropped from its
+/// boundary, so the regions triangulate to as many triangles as the polygons' fans (`n − 2`
+/// for `n` corners). With one class the vertex lies inside a region; with two it may lie
+/// straight along the crease between two, and be dropped: such a vertex stays out of the core.
+/// (The Menger sponge's bars, read from a mesh: each wall is several convex polygons, and
+/// every corner of a wall away from the cut is a corner of three walls.)
+fn merge_classes(polys: &[Polygon], star: &[u32], flat: f64) -> usize {
+    let n = star.len();
+    // Each polygon's class, named by its first member; joined by relabelling (stars are small).
+    let mut class: SmallVec<[u32; 16]> = (0..n as u32).collect();
+    let mut any = false;
+    for x in 0..n {
+        for y in x + 1..n {
+            if class[x] == class[y]
+                || !mergeable(&polys[star[x] as usize], &polys[star[y] as usize], flat)
+            {
+                continue;
+            }
+            any = true;
+            let (keep, gone) = (class[x].min(class[y]), class[x].max(class[y]));
+            for c in &mut class {
+                if *c == gone {
+                    *c = keep;
+                }
+            }
+        }
+    }
+    if !any {
+        return usize::MAX;
+    }
+    class
+        .iter()
+        .enumerate()
+        .filter(|&(k, &c)| c as usize == k)
+        .count()
 }
 
 /// Whether a vertex may not be core, where known.
@@ -290,6 +339,37 @@ mod tests {
         for op in BoolOp::ALL {
             same_as_soup(&a, &b, op);
         }
+    }
+
+    /// A cube less the bars of a depth-3 Menger sponge read from a mesh: each wall of a bar
+    /// pierced by others is several coplanar convex polygons of one source, so before the walls'
+    /// corners were counted by class (three or more planes around each) none was core.
+    #[test]
+    fn coplanar_walls_pass_through_where_every_corner_is_one_of_three() {
+        let mut bars = Vec::new();
+        for cells in [1u32, 3, 9] {
+            let cell = 1.0 / f64::from(cells);
+            let hole = cell / 3.0;
+            for axis in 0..3 {
+                for i in 0..cells {
+                    for j in 0..cells {
+                        let u = -0.5 + cell * (f64::from(i) + 0.5);
+                        let v = -0.5 + cell * (f64::from(j) + 0.5);
+                        let mut size = DVec3::splat(hole);
+                        size[axis] = 1.5;
+                        let mut centre = DVec3::ZERO;
+                        centre[(axis + 1) % 3] = u;
+                        centre[(axis + 2) % 3] = v;
+                        bars.push(Solid::cuboid(size).unwrap().translate(centre).unwrap());
+                    }
+                }
+            }
+        }
+        let bars = Solid::from_mesh(&Solid::union_all(bars).to_mesh()).unwrap();
+        let cube = Solid::from_mesh(&Solid::cube(1.0).unwrap().to_mesh())
+            .unwrap()
+            .with_source(1);
+        same_as_soup(&cube, &bars.with_source(2), BoolOp::Difference);
     }
 
     #[test]
