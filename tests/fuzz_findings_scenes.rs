@@ -1,7 +1,8 @@
 //! Every scene document the `scenes` fuzz target in `fuzz/` found failing
 //! (`tests/fuzz_findings/*.json`), replayed as a named test: baked as the target bakes it, and
 //! by the BSP route at the target's coarse settings. The `booleans` target's findings are in
-//! `fuzz_findings.rs`.
+//! `fuzz_findings.rs`; those on shells thinner than they are long, in
+//! `fuzz_findings_thin_shells.rs`.
 
 #[path = "../fuzz/fuzz_targets/scene_check.rs"]
 #[allow(dead_code)]

@@ -47,6 +47,17 @@ pub(crate) fn solid_angle(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> f64
 /// triangles as needles, but `to_mesh` judges needles at no more than 16 times the scale of the
 /// region where the boolean's operands met, so it leaves them be.) Larger thresholds would start eating real detail of tessellated curves (a
 /// 10⁻³ fillet on a 10³ model has triangles of area 10⁻¹¹ d²).
+///
+/// The two halves are why a needle by area is not always one the kernel must remove. The
+/// needles booleans and welds make are *thin* (a vertex a hair from a neighbour's edge: the
+/// longest edge over 100 heights) or *specks* (within a weld's reach, or a speck of the shell
+/// itself). A shell thinner than it is long changes the second half: a well-shaped triangle of
+/// its own detail can be under `1.4·10⁻⁶ d` across and still span the shell (a prism 6.7·10⁶
+/// long on a 6 × 3 end: its end triangles, of area 9, are below `10⁻¹² d² = 44`, and
+/// collapsing one would take a third of its volume, so the needle pass leaves them). The
+/// report counts every needle by area; the `scenes` fuzz target's check
+/// (`fuzz/fuzz_targets/scene_check.rs`) demands away only thin ones and specks, a speck judged
+/// against the shell's thickness (6 × `2V/A`) where that is less than its diagonal.
 pub(crate) const NEEDLE_AREA: f64 = 1e-12;
 
 /// The size, as a fraction of the shell's diagonal, of a speck that counts as a needle:
