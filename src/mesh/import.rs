@@ -179,20 +179,7 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
         }
         links = crossing.discs;
     }
-    // One polygon per triangle of non-zero area. Repeated indices were refused or have
-    // zero area, so Polygon::new only fails where Newell's method finds no plane at all.
-    let triangles: Vec<Option<Polygon>> = mesh
-        .triangles
-        .iter()
-        .zip(&mesh.sources)
-        .map(|(tri, &source)| {
-            let corners = tri.map(|i| mesh.positions[i as usize]);
-            if is_zero_area(corners) {
-                return None;
-            }
-            Polygon::new(corners.as_slice(), source)
-        })
-        .collect();
+    let triangles = triangle_polygons(mesh);
     // A mesh of triangles that all span no area bounds nothing: say so rather than return the
     // empty solid, which would pass for a right answer.
     if !triangles.is_empty() && triangles.iter().all(Option::is_none) {
@@ -206,10 +193,14 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
     }
     let mut discs = links.is_some();
     let polygons = if options.merge_coplanar {
-        let (mut polygons, chords_inside) = merge_coplanar(mesh, &triangles, links.as_ref());
-        discs &= chords_inside;
-        share_face_planes(&mut polygons, merge_tolerance(mesh));
-        polygons
+        let mut merged = merge_coplanar(mesh, &triangles, links.as_ref());
+        discs &= merged.chords_inside;
+        share_face_planes(
+            &mut merged.polygons,
+            &merged.neighbours,
+            merge_tolerance(mesh),
+        );
+        merged.polygons
     } else {
         triangles.into_iter().flatten().collect()
     };
@@ -218,6 +209,23 @@ pub(crate) fn polygons_from_mesh(mesh: &Mesh, options: &FromMeshOptions) -> Resu
         polygons,
         discs_if_apart,
     })
+}
+
+/// One polygon per triangle of non-zero area, `None` for the others. Repeated indices were
+/// refused or have zero area, so `Polygon::new` only fails where Newell's method finds no
+/// plane at all.
+fn triangle_polygons(mesh: &Mesh) -> Vec<Option<Polygon>> {
+    mesh.triangles
+        .iter()
+        .zip(&mesh.sources)
+        .map(|(tri, &source)| {
+            let corners = tri.map(|i| mesh.positions[i as usize]);
+            if is_zero_area(corners) {
+                return None;
+            }
+            Polygon::new(corners.as_slice(), source)
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -1,18 +1,21 @@
 //! One plane for all the polygons of one flat face of a mesh.
 
 use crate::geom::Plane;
+#[cfg(test)]
 use crate::hash::{KeyedHashMap, key};
 
 use super::Polygon;
 use super::side::PARALLEL_BELOW;
 
 /// Gives the polygons of each flat face one plane, bit for bit: that of the first polygon of
-/// the face (in the order given). A face is grown across edges (the same ends bit for bit,
-/// the other way round) from that polygon to neighbours of the same source facing the same
-/// way, whose planes cross its plane at a sine below [`PARALLEL_BELOW`] and all of whose
-/// vertices lie within `tol` of it: the triangles of a tessellated flat face, which merge into
-/// several polygons where a larger one would not be strictly convex (a grid's cells), each
-/// with its own Newell plane, the same plane up to rounding.
+/// the face (in the order given). A face is grown across `neighbours` (pairs of indices into
+/// `polygons` that meet along an edge, either way round) from that polygon to neighbours of
+/// the same source facing the same way, whose planes cross its plane at a sine below
+/// [`PARALLEL_BELOW`] and all of whose vertices lie within `tol` of it: the triangles of a
+/// tessellated flat face, which merge into several polygons where a larger one would not be
+/// strictly convex (a grid's cells), each with its own Newell plane, the same plane up to
+/// rounding. Mesh import's coplanar merge gives the pairs: it tries every edge of every
+/// polygon it makes, so those it refused are the polygon's edges (no hashing of positions).
 ///
 /// A boolean cuts such a face on one line only if its polygons share one plane. Where another
 /// operand's face crosses it at a tiny angle α, the crossing line of each polygon's plane moves
@@ -22,7 +25,56 @@ use super::side::PARALLEL_BELOW;
 /// boundary edges); so too where the slab's sides met the crossing lines at 1e-8°, the cut
 /// points on three planes keyed by different planes of one face (see
 /// `share_near_parallel_vertices`).
-pub(crate) fn share_face_planes(polygons: &mut [Polygon], tol: f64) {
+pub(crate) fn share_face_planes(polygons: &mut [Polygon], neighbours: &[(u32, u32)], tol: f64) {
+    // Each polygon's neighbours, both ways round, as one array sliced by `start`.
+    let mut start = vec![0u32; polygons.len() + 1];
+    for &(i, j) in neighbours {
+        start[i as usize + 1] += 1;
+        start[j as usize + 1] += 1;
+    }
+    for i in 0..polygons.len() {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut beside = vec![0u32; 2 * neighbours.len()];
+    for &(i, j) in neighbours {
+        for (a, b) in [(i, j), (j, i)] {
+            beside[fill[a as usize] as usize] = b;
+            fill[a as usize] += 1;
+        }
+    }
+    let mut face = vec![u32::MAX; polygons.len()];
+    let mut stack = Vec::new();
+    for first in 0..polygons.len() {
+        if face[first] != u32::MAX {
+            continue;
+        }
+        face[first] = first as u32;
+        let (plane, source) = (polygons[first].plane, polygons[first].source);
+        stack.push(first);
+        while let Some(i) = stack.pop() {
+            for &j in &beside[start[i] as usize..start[i + 1] as usize] {
+                let j = j as usize;
+                if face[j] == u32::MAX && same_face(&polygons[j], &plane, source, tol) {
+                    face[j] = first as u32;
+                    stack.push(j);
+                }
+            }
+        }
+    }
+    for i in 0..polygons.len() {
+        let first = face[i] as usize;
+        if first != i {
+            polygons[i].plane = polygons[first].plane;
+        }
+    }
+}
+
+/// [`share_face_planes`] as round 23 first wrote it, its neighbours found by hashing every
+/// directed edge by its ends' positions: kept for the tests that the merge's neighbours give
+/// the same planes.
+#[cfg(test)]
+pub(crate) fn share_face_planes_by_position(polygons: &mut [Polygon], tol: f64) {
     let corners = polygons.iter().map(|p| p.vertices.len()).sum();
     let mut owner: KeyedHashMap<([u64; 3], [u64; 3]), u32> =
         KeyedHashMap::with_capacity_and_hasher(corners, Default::default());
@@ -84,7 +136,7 @@ mod tests {
 
     /// Two quads of one flat face share the first one's plane (their anchors differ before);
     /// a neighbour of another source, one turned 1e-9 rad, and one across no shared edge keep
-    /// their own.
+    /// their own: given the neighbours, and found by position.
     #[test]
     fn the_polygons_of_one_flat_face_share_a_plane() {
         let a = quad([[0., 0., 1.], [1., 0., 1.], [1., 1., 1.], [0., 1., 1.]], 0);
@@ -102,12 +154,18 @@ mod tests {
         );
         let apart = quad([[5., 5., 1.], [6., 5., 1.], [6., 6., 1.], [5., 6., 1.]], 0);
         assert_ne!(a.plane, b.plane);
-        let mut polygons = vec![a.clone(), b, other.clone(), turned.clone(), apart.clone()];
-        share_face_planes(&mut polygons, 1e-12);
-        assert_eq!(polygons[1].plane, a.plane);
-        assert_eq!(polygons[0].plane, a.plane);
-        assert_eq!(polygons[2].plane, other.plane);
-        assert_eq!(polygons[3].plane, turned.plane);
-        assert_eq!(polygons[4].plane, apart.plane);
+        let given = vec![a.clone(), b, other.clone(), turned.clone(), apart.clone()];
+        let mut polygons = given.clone();
+        // a meets b and other, b meets turned; apart meets none.
+        share_face_planes(&mut polygons, &[(0, 1), (2, 0), (1, 3)], 1e-12);
+        let mut by_position = given;
+        share_face_planes_by_position(&mut by_position, 1e-12);
+        for polygons in [polygons, by_position] {
+            assert_eq!(polygons[1].plane, a.plane);
+            assert_eq!(polygons[0].plane, a.plane);
+            assert_eq!(polygons[2].plane, other.plane);
+            assert_eq!(polygons[3].plane, turned.plane);
+            assert_eq!(polygons[4].plane, apart.plane);
+        }
     }
 }

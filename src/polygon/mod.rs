@@ -15,6 +15,8 @@ mod side;
 mod split;
 
 pub(crate) use faces::share_face_planes;
+#[cfg(test)]
+pub(crate) use faces::share_face_planes_by_position;
 pub(crate) use planes::attach_edge_planes_among;
 pub(crate) use shared::share_near_parallel_vertices;
 pub(crate) use side::plane_noise;
