@@ -103,3 +103,49 @@ fn scenes_bsp_route_of_i_beams_keep_thin_needles_the_pass_undoes() {
         }
     }
 }
+
+/// Round 23's second 10-minute `scenes` run (artifacts crash-1158cc33…, crash-1207e49a…,
+/// crash-81803af6…; `bsp_22` … `bsp_24`): a box 28 × 1 × 3 (23, 34 long) less a cylinder of
+/// radius 4·10⁷ … 8·10⁷ and height 1 turned a few degrees: the box less a tilted slab 1
+/// thick, two wedges. Features of 1 on operands 8·10⁷ across are within the precision
+/// contract: the coarse BSP route must give a closed 2-manifold of positive shells or refuse.
+#[test]
+fn scenes_bsp_route_of_a_box_less_a_cylinder_4e7_wide() {
+    for i in [22, 23, 24] {
+        let name = format!("bsp_{i}");
+        let scene = finding_scene(&name);
+        if let Err(e) = scene_check::check_bsp_route(&scene) {
+            panic!("{name}: {e}");
+        }
+        let Ok(solid) = scene.to_solid(&scene_check::coarse(&scene).unwrap()) else {
+            continue;
+        };
+        let report = solid.to_mesh().report();
+        // Within the box the cylinder is a slab: a box 200 wide in its place cuts the same.
+        let json = std::fs::read_to_string(format!(
+            "{}/tests/fuzz_findings/{name}.json",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .unwrap();
+        let i = json.find("\"cylinder\"").unwrap();
+        let j = i + json[i..].find('}').unwrap();
+        let slab = format!(
+            "{}\"box\", \"size\": [200, 1, 200]{}",
+            &json[..i],
+            &json[j..]
+        );
+        let slab = bspcsg::Scene::from_json_str(&slab).unwrap();
+        let exact = slab
+            .to_solid(&scene_check::coarse(&slab).unwrap())
+            .unwrap()
+            .to_mesh()
+            .report()
+            .volume;
+        assert!(
+            report.is_closed_manifold()
+                && exact > 1.0
+                && (report.volume - exact).abs() < 1e-9 * exact,
+            "{name}: {report}, slab's volume {exact}"
+        );
+    }
+}

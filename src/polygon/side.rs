@@ -17,8 +17,8 @@ impl Polygon {
     /// every polygon it settles at a vertex judges the vertex alike (see `Tree::face_node`);
     /// and `Coplanar` where `plane` is the polygon's own or coplanar by `eps` alone (see
     /// `coplanar_within_eps`). [`Polygon::split`] gives the same answers for a polygon tracking
-    /// no edge planes, except where a vertex is near and `plane` nearly parallel: it judges
-    /// that vertex by a narrower band.
+    /// no edge planes, except where a vertex is near and `plane` nearly parallel, or an edge
+    /// beside that vertex runs nearly along `plane`: it judges that vertex by a narrower band.
     pub(crate) fn side_near(&self, plane: &Plane, eps: f64) -> (Side, bool) {
         if self.plane.is_same_or_flipped(plane) {
             return (Side::Coplanar, true);
@@ -236,6 +236,21 @@ mod tests {
         poly.plane.normal.cross(plane.normal).length() < ON_BAND_BELOW
     }
 
+    /// True when a vertex within `eps` of `plane` has an edge beside it running along `plane`
+    /// at a slope below [`ON_BAND_BELOW`] to an end beyond `eps`, where [`Polygon::split`] also
+    /// narrows the band.
+    fn grazed(poly: &Polygon, plane: &Plane, eps: f64) -> bool {
+        let v = poly.vertices();
+        let n = v.len();
+        (0..n).any(|i| {
+            plane.distance(v[i]).abs() <= eps
+                && [v[(i + n - 1) % n], v[(i + 1) % n]].iter().any(|&w| {
+                    plane.distance(w).abs() > eps
+                        && plane.normal.dot(w - v[i]).abs() < ON_BAND_BELOW * (w - v[i]).length()
+                })
+        })
+    }
+
     /// Where `side_near` settles a polygon, `split` says the same: planes through a vertex
     /// (a vertex near), tilted from the polygon's own by angles from 10⁻⁹ to 1 rad (inside and
     /// outside the nearly parallel band), at offsets within and beyond the tolerance.
@@ -251,7 +266,7 @@ mod tests {
         let across = n.any_orthonormal_vector();
         let eps = 1e-9;
         let (mut settled, mut near_settled, mut in_band) = (0, 0, 0);
-        for tilt in [0.0, 1e-9, 1e-7, 1e-5, 5e-4, 2e-3, 0.1, 1.0] {
+        for tilt in [0.0, 1e-9, 1e-7, 1e-5, 5e-4, 2e-3, 0.01, 0.1, 0.5, 1.0] {
             let normal = (n + across * tilt).normalize();
             for &v in &ring {
                 for offset in [-3.0 * eps, -0.5 * eps, 0.0, 0.7 * eps, 2.0 * eps, 0.3] {
@@ -267,7 +282,11 @@ mod tests {
                         };
                         let sure = match side {
                             Side::Coplanar => poly.coplanar_within_eps(&plane),
-                            _ => !near || !nearly_parallel(&poly, &plane),
+                            _ => {
+                                !near
+                                    || !(nearly_parallel(&poly, &plane)
+                                        || grazed(&poly, &plane, eps))
+                            }
                         };
                         if !sure {
                             in_band += 1;

@@ -85,10 +85,30 @@ impl Ctx<'_> {
             return whole();
         };
         let (bottom, top) = (-half_height, half_height);
+        let (y0, y1) = (bottom.max(reach.min.y), top.min(reach.max.y));
+        // The reach across the axis, within the frustum's inscribed radius: inside the reach
+        // the frustum is a cuboid. Left whole its caps, far wider than the scene, are cut
+        // where they cross it at the rounding of their far corners, hundreds of the
+        // boolean's tolerances (`scenes_bsp_route_of_a_box_less_a_cylinder_4e7_wide`).
+        let corner = DVec3::new(
+            reach.min.x.abs().max(reach.max.x.abs()),
+            0.0,
+            reach.min.z.abs().max(reach.max.z.abs()),
+        );
+        let inscribed = r[0].min(r[1]) * (std::f64::consts::PI / f64::from(segments.max(3))).cos();
+        if corner.length() < 0.5 * inscribed {
+            let cut = Aabb::new(
+                DVec3::new(reach.min.x, y0, reach.min.z),
+                DVec3::new(reach.max.x, y1, reach.max.z),
+            );
+            if !(y0 < y1 && cut.overlaps(&scene, 0.0)) {
+                return Ok(Solid::empty());
+            }
+            return primitives::cuboid_between(cut.min, cut.max).map(Solid::from_polygons);
+        }
         if !(bottom < reach.min.y || top > reach.max.y) {
             return whole();
         }
-        let (y0, y1) = (bottom.max(reach.min.y), top.min(reach.max.y));
         let rmax = r[0].max(r[1]);
         let cut = Aabb::new(DVec3::new(-rmax, y0, -rmax), DVec3::new(rmax, y1, rmax));
         if !(y0 < y1 && cut.overlaps(&scene, 0.0)) {
