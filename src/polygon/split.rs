@@ -162,7 +162,12 @@ impl Polygon {
         // by a rounding error, an edge in the polygon's own plane on both sides (no `meet` for
         // it: see `CutEdge::cut`) was cut a rounding error over the sine off the line, 6e-9 at
         // 1.7e-9 rad, where the other operand, cut by this polygon's plane, ends on the line.
-        let own = self.plane.normal.cross(plane.normal).length();
+        // `sine` is this where a vertex was near the plane (else a placeholder).
+        let own = if any_on {
+            sine
+        } else {
+            self.plane.normal.cross(plane.normal).length()
+        };
         if (PARALLEL_BELOW..NEAR_PARALLEL).contains(&own)
             && let Some(crossing) = Crossing::new(&self.plane, plane)
         {

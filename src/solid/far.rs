@@ -85,22 +85,15 @@ pub(super) fn keep_far(
         };
     };
     // Vertices that cannot be core: used by a near polygon, or, found when first asked, where
-    // two polygons around it may merge (all polygons around a vertex of a kept one are kept,
-    // or one of them is near).
+    // polygons around it may merge and fall into fewer than three merge classes (see
+    // [`merge_classes`]; all polygons around a vertex of a kept one are kept, or one of them is
+    // near).
     let mut open = vec![Open::Unknown; ids.vertex_count()];
     for (i, _) in near.iter().enumerate().filter(|(_, n)| **n) {
         for &id in ids.corners(i) {
             open[id as usize] = Open::Yes;
         }
     }
-    let merges_around = |id: u32| {
-        let star = ids.around(id);
-        star.iter().enumerate().any(|(k, &x)| {
-            star[k + 1..]
-                .iter()
-                .any(|&y| mergeable(&polys[x as usize], &polys[y as usize], flat))
-        })
-    };
     let mut is_open = |id: u32| match open[id as usize] {
         Open::Yes => true,
         Open::No => false,
@@ -109,15 +102,18 @@ pub(super) fn keep_far(
             // Debug builds and the unit tests (run in release too) check the floor against the
             // full test: bounded, a floor being known only around at most `STAR_CAP` polygons.
             if cfg!(any(test, debug_assertions)) {
-                assert!(!merges_around(id), "vertex {id}: the floor missed a merge");
+                assert!(
+                    merge_classes(polys, ids.around(id), flat) == usize::MAX,
+                    "vertex {id}: the floor missed a merge"
+                );
             }
             open[id as usize] = Open::No;
             false
         }
         Open::Unknown => {
-            let any = merge_classes(polys, ids.around(id), flat) < 3;
-            open[id as usize] = if any { Open::Yes } else { Open::No };
-            any
+            let is = merge_classes(polys, ids.around(id), flat) < 3;
+            open[id as usize] = if is { Open::Yes } else { Open::No };
+            is
         }
     };
     let (mut core, mut rim): (Vec<u32>, Vec<u32>) = kept
@@ -147,7 +143,8 @@ pub(super) fn keep_far(
 
 /// How many classes the polygons `star` (those around one vertex) fall into when every two that
 /// `to_mesh` could merge as coplanar ([`mergeable`]) are put in one; `usize::MAX` where no two
-/// could merge.
+/// could merge. Exact from three up: the count only falls as classes join, so the scan stops
+/// once it is below three, the one question asked of it.
 ///
 /// Around a vertex among three classes or more, the regions `to_mesh` forms meet along at
 /// least three boundary edges to three distinct neighbours, and a boundary vertex is dropped
@@ -159,11 +156,16 @@ pub(super) fn keep_far(
 /// straight along the crease between two, and be dropped: such a vertex stays out of the core.
 /// (The Menger sponge's bars, read from a mesh: each wall is several convex polygons, and
 /// every corner of a wall away from the cut is a corner of three walls.)
+///
+/// The argument holds where faces are exactly coplanar or clearly apart. On folds within
+/// `flat` (faces nearly but not exactly coplanar) the regions compare each ring with their
+/// group's first ring's plane and may join two polygons of the star that [`mergeable`] keeps
+/// apart; the result is still closed, but may keep a vertex the repair of the soup drops.
 fn merge_classes(polys: &[Polygon], star: &[u32], flat: f64) -> usize {
     let n = star.len();
     // Each polygon's class, named by its first member; joined by relabelling (stars are small).
     let mut class: SmallVec<[u32; 16]> = (0..n as u32).collect();
-    let mut any = false;
+    let mut classes = n;
     for x in 0..n {
         for y in x + 1..n {
             if class[x] == class[y]
@@ -171,23 +173,19 @@ fn merge_classes(polys: &[Polygon], star: &[u32], flat: f64) -> usize {
             {
                 continue;
             }
-            any = true;
             let (keep, gone) = (class[x].min(class[y]), class[x].max(class[y]));
             for c in &mut class {
                 if *c == gone {
                     *c = keep;
                 }
             }
+            classes -= 1;
+            if classes < 3 {
+                return classes;
+            }
         }
     }
-    if !any {
-        return usize::MAX;
-    }
-    class
-        .iter()
-        .enumerate()
-        .filter(|&(k, &c)| c as usize == k)
-        .count()
+    if classes == n { usize::MAX } else { classes }
 }
 
 /// Whether a vertex may not be core, where known.

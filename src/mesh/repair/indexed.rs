@@ -17,7 +17,8 @@ use crate::polygon::Polygon;
 ///
 /// - `polygons[..core]`: the **core**. Every vertex of a core polygon is surrounded only by
 ///   polygons passed through whole (so every edge is matched by the input's own neighbour),
-///   none of them coplanar with a neighbour of its source (so no region would merge them).
+///   and where polygons around it could merge as coplanar, they fall into three or more merge
+///   classes (so no region drops it or holds it inside: see `solid::far::merge_classes`).
 ///   Each is emitted as its fan, without welding, T-junction search or regrouping.
 /// - `polygons[i]` for `i` in `rim`: the **rim**, passed through whole but touching the cut
 ///   region or a flat area; repaired with the cut polygons. Their ids tie the core's vertices
