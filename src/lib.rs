@@ -114,7 +114,10 @@ mod solid;
 mod topology;
 
 pub use error::{Error, MeshDefect, Result};
-pub use geom::{Aabb, MAX_COORDINATE, Plane, Side, Tolerance};
+pub use geom::{
+    Aabb, MAX_COORDINATE, NEEDLE_SPECK_THICKNESSES, NEEDLE_THIN, NEEDLE_WELD_TOLERANCES, Plane,
+    Side, Tolerance, is_needle_to_remove,
+};
 pub use io::{
     Format, MAX_BUFFER_BYTES, MAX_READ_TRIANGLES, OutFile, ParseFormatError, as_read_back_from,
     cleanup_interrupted_writes, encode_mesh, read_mesh, read_mesh_as, read_mesh_from_bytes,

@@ -10,17 +10,14 @@
 //! neighbours than the two triangles on that edge give them, collapsing it would pinch the
 //! surface (the rule `to_mesh` follows: needles go unless removing them changes topology).
 //!
-//! Nor is every needle by area one the kernel must remove. A needle of its making is *thin*
-//! (its longest edge over [`THIN`] times its height: a cut or weld put a vertex a hair from a
-//! neighbour's edge), or a *speck* (every edge within a weld's reach, [`WELD_TOLERANCES`]
-//! plane tolerances; or area below `NEEDLE_AREA` × s², s the shell's thickness scale:
-//! [`SPECK_THICKNESSES`] times `2V/A`, the thickness of a slab of the shell's volume and area,
-//! where that is less than the diagonal). A well-shaped triangle larger than both is the input's own detail on a
-//! shell thinner than it is long: the end face of a prism 6.7·10⁶ long on a 6 × 3 end (`2V/A`
-//! = 1.5; its end triangles, of area 9, are below 10⁻¹² d² = 44 by its diagonal, and collapsing
-//! one would take a third of its volume, so the needle pass leaves them). On a shell as thick as
-//! it is long (a box, a sphere, a bracket) `2V/A` is at least a sixth of the diagonal and the
-//! speck rule is the report's.
+//! Nor is every needle by area one the kernel must remove: the check counts those the needle
+//! pass removes, by the library's rule ([`bspcsg::is_needle_to_remove`]: thin, within a weld's
+//! reach, or a speck of its shell judged by its slab thickness `2V/A`). A well-shaped triangle
+//! larger than both is the input's own detail on a shell thinner than it is long: the end face
+//! of a prism 6.7·10⁶ long on a 6 × 3 end (`2V/A` = 1.5; its end triangles, of area 9, are below
+//! 10⁻¹² d² = 44 by its diagonal). On a cube or a sphere (diagonal 5.2 × `2V/A`) the speck
+//! rule is the report's; on less compact shells it is looser than the report's (the stored
+//! brackets' diagonals are 10 to 104 slab thicknesses): a speck there is judged by 6 × `2V/A`.
 
 use bspcsg::glam::DVec3;
 use bspcsg::{Aabb, BakeOptions, Mesh, Scene, TessellationOptions, Tolerance};
@@ -29,18 +26,6 @@ use bspcsg::{Aabb, BakeOptions, Mesh, Scene, TessellationOptions, Tolerance};
 const NEEDLE_AREA: f64 = bspcsg::MeshReport::NEEDLE_AREA;
 /// How far beyond the region where its operands met a boolean's needles are judged.
 const REGION_REACH: f64 = 16.0;
-/// A speck's scale, in slab thicknesses `2V/A` of its shell, where that is less than the
-/// shell's diagonal: a cube's diagonal is 5.2 of them, a sphere's 3.
-pub const SPECK_THICKNESSES: f64 = 6.0;
-/// The reach of the kernel's widest weld, in plane tolerances (10⁻¹² of the shell's diagonal
-/// as capped; `repair::SWEPT_WELDS` × 8): a triangle whose every edge is shorter is a speck of
-/// a weld's making whatever its shell's thickness.
-pub const WELD_TOLERANCES: f64 = 32.0;
-/// A triangle is thin when its longest edge is more than this many times its height: the
-/// slivers a cut or a weld leaves where a vertex lies a hair from a neighbour's edge (those of
-/// `bsp_1`'s notch, 3·10⁻⁵ wide, are 320 to 5,000).
-pub const THIN: f64 = 100.0;
-
 /// The resolution of the bake.
 pub const BAKE_RESOLUTION: u32 = 12;
 
@@ -138,18 +123,8 @@ pub fn needles_within(mesh: &Mesh, reach: f64) -> usize {
         .filter(|t| {
             let r = roots[t[0] as usize];
             let d = boxes[r].diagonal().min(reach);
-            let [a, b, c] = t.map(corner);
-            let area = 0.5 * (b - a).cross(c - a).length();
-            if area >= NEEDLE_AREA * d * d {
-                return false;
-            }
-            let s = d.min(SPECK_THICKNESSES * 2.0 * volumes[r].abs() / areas[r]);
-            let longest = a.distance(b).max(b.distance(c)).max(c.distance(a));
-            // Thin (longest edge over `THIN` heights), within a weld's reach, or a speck of the
-            // shell's thickness.
-            longest * longest > 2.0 * THIN * area
-                || longest < WELD_TOLERANCES * Tolerance::RELATIVE * d
-                || area < NEEDLE_AREA * s * s
+            let slab = 2.0 * volumes[r].abs() / areas[r];
+            bspcsg::is_needle_to_remove(t.map(corner), d, slab)
         })
         .copied()
         .collect();

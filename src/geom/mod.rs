@@ -55,15 +55,68 @@ pub(crate) fn solid_angle(a: glam::DVec3, b: glam::DVec3, c: glam::DVec3) -> f64
 /// its own detail can be under `1.4·10⁻⁶ d` across and still span the shell (a prism 6.7·10⁶
 /// long on a 6 × 3 end: its end triangles, of area 9, are below `10⁻¹² d² = 44`, and
 /// collapsing one would take a third of its volume, so the needle pass leaves them). The
-/// report counts every needle by area; the `scenes` fuzz target's check
-/// (`fuzz/fuzz_targets/scene_check.rs`) demands away only thin ones and specks, a speck judged
-/// against the shell's thickness (6 × `2V/A`) where that is less than its diagonal.
+/// report counts every needle by area. The needle pass removes every needle by area, and in a
+/// shell where that changes the volume beyond its bound, only thin ones and specks, a speck
+/// judged against the shell's thickness (6 × `2V/A`) where that is less than its diagonal
+/// ([`is_needle_to_remove`]); the `scenes` fuzz target's check demands away only those.
 pub(crate) const NEEDLE_AREA: f64 = 1e-12;
 
 /// The size, as a fraction of the shell's diagonal, of a speck that counts as a needle:
 /// `√NEEDLE_AREA`. Removing a needle may move the surface twice this (a speck's shortest edge
 /// can be up to 1.52 times it; see `mesh::needles`).
 pub(crate) const MAX_MOVE: f64 = 1e-6;
+
+/// A needle the kernel removes is *thin*: its longest edge more than this many times its
+/// height (a cut or weld put a vertex a hair from a neighbour's edge; `bsp_1`'s notch slivers,
+/// 3·10⁻⁵ wide, are 320 to 5,000).
+pub const NEEDLE_THIN: f64 = 100.0;
+
+/// ... or within a weld's reach: every edge shorter than this many plane tolerances
+/// (`Tolerance::RELATIVE` of the diagonal): four first welds (`repair::WELD_TOLERANCES`, 8),
+/// the needle pass's own sweep allowance.
+pub const NEEDLE_WELD_TOLERANCES: f64 = 32.0;
+
+/// ... or a speck of its shell: area below `NEEDLE_AREA · s²`, `s` the smaller of the diagonal
+/// and this many slab thicknesses `2V/A` of the shell (volume `V`, area `A`; a cube's diagonal
+/// is 5.2 of them, a sphere's too, so on a compact shell `s` is the diagonal).
+pub const NEEDLE_SPECK_THICKNESSES: f64 = 6.0;
+
+/// True when triangle `corners`, in a shell whose bounding-box diagonal (as capped) is
+/// `diagonal` and whose slab thickness `2V/A` is `slab` (`f64::INFINITY` when unknown), is a
+/// needle the kernel removes: a needle by area (`NEEDLE_AREA`) that is thin
+/// ([`NEEDLE_THIN`]), within a weld's reach ([`NEEDLE_WELD_TOLERANCES`]) or a speck of its
+/// shell ([`NEEDLE_SPECK_THICKNESSES`]). A well-shaped triangle larger than a weld on a shell
+/// thinner than it is long is the shape's own detail, and stays. The needle pass falls back on
+/// this rule in a shell where removing every needle by area would change its volume beyond the
+/// bound; the `scenes` fuzz target's check counts by it; `MeshReport` counts every needle by
+/// area.
+#[must_use]
+pub fn is_needle_to_remove(corners: [glam::DVec3; 3], diagonal: f64, slab: f64) -> bool {
+    let [a, b, c] = corners;
+    let area = 0.5 * (b - a).cross(c - a).length();
+    area < NEEDLE_AREA * diagonal * diagonal && needle_of_kernel(corners, area, diagonal, slab)
+}
+
+/// The second half of [`is_needle_to_remove`], for a triangle of `area` already known to be a
+/// needle by area.
+pub(crate) fn needle_of_kernel(
+    [a, b, c]: [glam::DVec3; 3],
+    area: f64,
+    diagonal: f64,
+    slab: f64,
+) -> bool {
+    let s = diagonal.min(NEEDLE_SPECK_THICKNESSES * slab);
+    if area < NEEDLE_AREA * s * s {
+        return true;
+    }
+    let longest = a
+        .distance_squared(b)
+        .max(b.distance_squared(c))
+        .max(c.distance_squared(a));
+    let weld = NEEDLE_WELD_TOLERANCES * Tolerance::RELATIVE * diagonal;
+    // Height = 2·area / longest: thin when longest > THIN · height.
+    longest > 2.0 * NEEDLE_THIN * area || longest < weld * weld
+}
 
 /// True when triangle `c` is a needle in a shell whose bounding-box diagonal is `diagonal`.
 pub(crate) fn is_needle([a, b, c]: [glam::DVec3; 3], diagonal: f64) -> bool {

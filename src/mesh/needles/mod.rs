@@ -144,7 +144,7 @@ pub(crate) fn remove_needles(
         return 0;
     }
     let mut work = Work::new(std::mem::take(mesh), scale);
-    let mut queue: Vec<u32> = (0..work.tris.len() as u32)
+    let queue: Vec<u32> = (0..work.tris.len() as u32)
         .filter(|&t| work.is_needle(t))
         .collect();
     if queue.is_empty() {
@@ -161,11 +161,74 @@ pub(crate) fn remove_needles(
         triangles: work.tris.clone(),
         sources: work.sources.clone(),
     };
-    // The volume the operations change, measured on the triangles around each needle's corners
-    // (every operation on a needle changes only those), and the area of those triangles.
-    let reference = bbox.center();
-    let mut change = 0.0;
-    let (mut seen, mut seen_area) = (vec![false; work.tris.len()], 0.0);
+    // Each operation bounds how far it moves the surface, by the shell's diagonal, not the
+    // volume it sweeps: where the triangles are far longer than the move (a sliver 10⁷ long
+    // whose whole profile, a unit across, is needles by that diagonal), moves within the bound
+    // swept up to a third of the solid each and folded it inside out. Where the pass changes a
+    // shell's volume beyond [`NEEDLE_VOLUME_CHANGE`] (of the mesh's), it runs again from the
+    // start removing in that shell only the needles the kernel must
+    // ([`crate::geom::is_needle_to_remove`]: thin, weld-sized or specks of its thickness, not a
+    // thin shell's own well-shaped faces); beyond it again, that shell keeps its needles, not
+    // its shape changed. Operations never reach across shells (each changes the triangles
+    // around one needle's corners), so the other shells' operations are the same again. (Until
+    // round 23 one shell over the bound undid every fix of the mesh.)
+    let tolerance = Tolerance::RELATIVE * bbox.diagonal().min(scale);
+    let mut frozen = vec![false; work.shell_volume.len()];
+    let mut strict = frozen.clone();
+    for _ in 0..NEEDLE_RERUNS {
+        let (change, seen_area) = run(&mut work, queue.clone(), &frozen, bbox.center());
+        let swept = NEEDLE_SWEPT_TOLERANCES * tolerance;
+        // Within what the touched triangles' area explains, the shell need not be measured.
+        let beyond = |s: usize, volume: f64, area: f64| {
+            change[s].abs() > swept * seen_area[s]
+                && change[s].abs() > NEEDLE_VOLUME_CHANGE * volume.abs() + swept * area
+        };
+        // The tetrahedra deleted whole (the last entry) against the whole mesh, as they go.
+        if beyond(frozen.len(), original.volume(), original.area()) {
+            break;
+        }
+        let mut over = false;
+        for s in 0..frozen.len() {
+            if beyond(s, original.volume(), original.area()) {
+                // First only the needles the kernel must remove; then none.
+                if strict[s] {
+                    frozen[s] = true;
+                }
+                strict[s] = true;
+                over = true;
+            }
+        }
+        if !over {
+            return work.finish(mesh);
+        }
+        work = Work::new(original.clone(), scale);
+        work.strict.clone_from(&strict);
+    }
+    *mesh = original;
+    found
+}
+
+/// How many times [`remove_needles`] runs, each stricter with the shells whose volume the last
+/// changed too much, before it leaves the whole mesh as it was.
+const NEEDLE_RERUNS: usize = 4;
+
+/// The needle pass proper over `work`, from the needles in `queue` (as [`Work::is_needle`]
+/// judges them), leaving those of `frozen` shells (as the pass found them, [`Work::first_shell`]) alone. Returns per such shell the
+/// volume its operations changed, measured on the triangles around each needle's corners (every
+/// operation on a needle changes only those) about `reference`, and the area of those
+/// triangles; one entry more for the tetrahedra deleted whole.
+fn run(
+    work: &mut Work,
+    mut queue: Vec<u32>,
+    frozen: &[bool],
+    reference: DVec3,
+) -> (Vec<f64>, Vec<f64>) {
+    let shell_of = |work: &Work, t: u32| work.first_shell[work.tris[t as usize][0] as usize];
+    queue.retain(|&t| !frozen[shell_of(work, t) as usize]);
+    // Per shell, and last the tetrahedra deleted whole.
+    let mut change = vec![0.0; frozen.len() + 1];
+    let mut seen_area = vec![0.0; frozen.len() + 1];
+    let mut seen = vec![false; work.tris.len()];
     // Each operation removes a needle or makes one's smallest area larger; the budget only
     // guards against cycling between equally bad choices.
     let mut budget = 16 * queue.len() + 64;
@@ -178,6 +241,11 @@ pub(crate) fn remove_needles(
             continue;
         }
         let op = work.plan(t);
+        let shell = if op.is_some() {
+            shell_of(work, t) as usize
+        } else {
+            frozen.len()
+        };
         // The triangles the operation changes: those around the needle's corners, and, for a
         // cluster's merge, around every vertex of the cluster.
         let mut star = work.star(&work.tris[t as usize]);
@@ -191,14 +259,14 @@ pub(crate) fn remove_needles(
         let before = work.star_volume(&star, reference);
         for &u in &star {
             if !std::mem::replace(&mut seen[u as usize], true) {
-                seen_area += area(work.corners(work.tris[u as usize]));
+                seen_area[shell] += area(work.corners(work.tris[u as usize]));
             }
         }
         let fixed = op.map(|op| work.apply(op));
         if fixed.is_none() {
             work.drop_tetrahedron(t);
         }
-        change += work.star_volume(&star, reference) - before;
+        change[shell] += work.star_volume(&star, reference) - before;
         if let Some(touched) = fixed {
             // An operation changes the neighbours of every corner of the triangles it touched,
             // so the link condition of needles with a corner there: those are tried again. A
@@ -217,23 +285,7 @@ pub(crate) fn remove_needles(
             queue.extend(again);
         }
     }
-    let left = work.finish(mesh);
-    // Each operation bounds how far it moves the surface, by the shell's diagonal, not the
-    // volume it sweeps: where the triangles are far longer than the move (a sliver 10⁷ long
-    // whose whole profile, a unit across, is needles by that diagonal), moves within the bound
-    // swept up to a third of the solid each and folded it inside out. Beyond
-    // [`NEEDLE_VOLUME_CHANGE`] the needles are left, not the shape changed.
-    let tolerance = Tolerance::RELATIVE * bbox.diagonal().min(scale);
-    // Within what the touched triangles' area explains, the whole mesh need not be measured.
-    if change.abs() > NEEDLE_SWEPT_TOLERANCES * tolerance * seen_area
-        && change.abs()
-            > NEEDLE_VOLUME_CHANGE * original.volume().abs()
-                + NEEDLE_SWEPT_TOLERANCES * tolerance * original.area()
-    {
-        *mesh = original;
-        return found;
-    }
-    left
+    (change, seen_area)
 }
 
 /// The most the needle pass may change the mesh's volume: [`NEEDLE_VOLUME_CHANGE`] of it, plus

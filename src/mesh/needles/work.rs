@@ -7,7 +7,7 @@ use smallvec::SmallVec;
 use super::SPECK_MOVE;
 use super::geometry::{area, plane_distance, twice_normal};
 use crate::disjoint_sets::DisjointSets;
-use crate::geom::{Aabb, NEEDLE_AREA, Tolerance, is_zero_area};
+use crate::geom::{Aabb, NEEDLE_AREA, Tolerance, is_zero_area, needle_of_kernel};
 use crate::mesh::Mesh;
 
 /// The mesh being edited: triangles with liveness, triangles per vertex and the scale of each
@@ -30,7 +30,18 @@ pub(super) struct Work {
     pub(super) max_move: Vec<f64>,
     /// The plane tolerance of booleans at the shell's scale: moves this small are always fine.
     pub(super) tolerance: Vec<f64>,
+    /// Per shell: its diagonal as capped, and its slab thickness `2V/A` (see
+    /// [`crate::geom::is_needle_to_remove`]).
+    diagonal: Vec<f64>,
+    slab: Vec<f64>,
     pub(super) shell_tris: Vec<usize>,
+    /// Per vertex: its shell's index as the pass found it (neck cuts add shells later), and
+    /// per such shell its volume then.
+    pub(super) first_shell: Vec<u32>,
+    pub(super) shell_volume: Vec<f64>,
+    /// Per shell as the pass found it: remove only the needles the kernel must
+    /// ([`crate::geom::is_needle_to_remove`]), not the shell's own well-shaped detail.
+    pub(super) strict: Vec<bool>,
     /// The cap on every shell's diagonal (see [`super::remove_needles`]).
     scale: f64,
 }
@@ -45,19 +56,34 @@ impl Work {
         let mut shell = vec![u32::MAX; n];
         let mut boxes: Vec<Aabb> = Vec::new();
         let mut shell_tris: Vec<usize> = Vec::new();
+        // Each shell's volume (about its first corner, for precision) and area, six and two
+        // times over.
+        let (mut origin, mut volume, mut surface) = (Vec::new(), Vec::new(), Vec::new());
         for t in &mesh.triangles {
             let root = sets.find(t[0] as usize);
             if shell[root] == u32::MAX {
                 shell[root] = boxes.len() as u32;
                 boxes.push(Aabb::EMPTY);
                 shell_tris.push(0);
+                origin.push(mesh.positions[t[0] as usize]);
+                volume.push(0.0);
+                surface.push(0.0);
             }
             let s = shell[root] as usize;
             shell_tris[s] += 1;
             for &v in t {
                 boxes[s].grow(mesh.positions[v as usize]);
             }
+            let [a, b, c] = t.map(|v| mesh.positions[v as usize] - origin[s]);
+            let n = (b - a).cross(c - a);
+            volume[s] += a.dot(n);
+            surface[s] += n.length();
         }
+        // 2V/A = 2 · (6V / 6) / (2A / 2) = (2/3) · 6V / 2A.
+        let shell_volume: Vec<f64> = volume.iter().map(|v| v / 6.0).collect();
+        let slab: Vec<f64> = (0..boxes.len())
+            .map(|s| 2.0 / 3.0 * volume[s].abs() / surface[s])
+            .collect();
         for v in 0..n {
             shell[v] = shell[sets.find(v)];
         }
@@ -69,6 +95,9 @@ impl Work {
             }
         }
         Work {
+            first_shell: shell.clone(),
+            strict: vec![false; shell_volume.len()],
+            shell_volume,
             alive: vec![true; mesh.triangles.len()],
             positions: mesh.positions,
             tris: mesh.triangles,
@@ -78,6 +107,8 @@ impl Work {
             needle_area: diag.iter().map(|d| NEEDLE_AREA * d * d).collect(),
             max_move: diag.iter().map(|d| SPECK_MOVE * d).collect(),
             tolerance: diag.iter().map(|d| Tolerance::RELATIVE * d).collect(),
+            diagonal: diag,
+            slab,
             shell_tris,
             scale,
         }
@@ -122,6 +153,9 @@ impl Work {
         self.needle_area.push(0.0);
         self.max_move.push(0.0);
         self.tolerance.push(0.0);
+        self.diagonal.push(0.0);
+        // The side keeps the shell's slab thickness (a bound: `s` is at most the diagonal).
+        self.slab.push(self.slab[old as usize]);
         for shell in [old, new] {
             let mut bbox = Aabb::EMPTY;
             for v in 0..self.positions.len() {
@@ -133,6 +167,7 @@ impl Work {
             self.needle_area[shell as usize] = NEEDLE_AREA * d * d;
             self.max_move[shell as usize] = SPECK_MOVE * d;
             self.tolerance[shell as usize] = Tolerance::RELATIVE * d;
+            self.diagonal[shell as usize] = d;
         }
     }
 
@@ -186,9 +221,20 @@ impl Work {
         self.needle_area[self.shell[tri[0] as usize] as usize]
     }
 
+    /// A live needle the pass removes ([`crate::geom::is_needle_to_remove`]): a needle by
+    /// area that is thin, weld-sized or a speck of its shell, not its well-shaped own detail.
+    /// In a shell marked `strict` (as the pass found it), only those the kernel must remove.
     pub(super) fn is_needle(&self, t: u32) -> bool {
         let tri = self.tris[t as usize];
-        self.alive[t as usize] && area(self.corners(tri)) < self.threshold(tri)
+        if !self.alive[t as usize] {
+            return false;
+        }
+        let corners = self.corners(tri);
+        let a = area(corners);
+        let s = self.shell[tri[0] as usize] as usize;
+        a < self.needle_area[s]
+            && (!self.strict[self.first_shell[tri[0] as usize] as usize]
+                || needle_of_kernel(corners, a, self.diagonal[s], self.slab[s]))
     }
 
     /// A triangle that may replace another facing `normal`: not flat, not folded over.
