@@ -97,12 +97,14 @@ fn scene_bsp_route_of_an_i_beam_with_a_corner_666660_out() {
 /// 9.3·10⁻⁶, passes under the cross piece's flat top, and thin triangles of the profiles'
 /// faces. The needle pass removes every needle of each mesh (it finds 47 … 155, leaves 0), but
 /// taking the profiles' own faces changed the volume by 1.4 % … 26 %, beyond its 1 % bound, so
-/// it undid all its moves, the thin needles' too. Since round 23 (needles23) the pass removes
-/// only needles by the check's rule (`bspcsg::is_needle_to_remove`) and judges the volume per
-/// shell: the thin needles go, the profiles' own faces stay, the volume within the 1 % bound.
+/// it undid all its moves, the thin needles' too. Now the pass judges the volume per shell and
+/// redoes a shell over the bound removing only the needles of the check's rule
+/// (`bspcsg::is_needle_to_remove`): the thin needles go, the profiles' own faces stay, the
+/// volume within the 1 % bound. `bsp_13` (an earlier finding of the same kind, whose own test
+/// does not ask the check) kept 6 thin needles so too.
 #[test]
-fn scenes_bsp_route_of_i_beams_keep_thin_needles_the_pass_undoes() {
-    for i in [14, 15, 16, 17, 19, 20, 21] {
+fn scenes_bsp_route_of_i_beams_lose_their_thin_needles() {
+    for i in [13, 14, 15, 16, 17, 19, 20, 21] {
         let name = format!("bsp_{i}");
         let scene = finding_scene(&name);
         if let Err(e) = scene_check::check_bsp_route(&scene) {

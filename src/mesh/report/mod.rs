@@ -47,7 +47,11 @@ use crate::topology::EdgeTable;
 ///   [`NEEDLE_AREA`](Self::NEEDLE_AREA) × d², `d` the diagonal of its shell's bounding box:
 ///   not a defect of topology (a closed 2-manifold may hold needles), but of geometry that
 ///   slicers, meshers and manifold3d's cleanup treat as degenerate. Booleans and marching
-///   cubes remove them wherever that changes no topology.
+///   cubes remove them wherever that changes no topology, except in a shell where removing
+///   them all would change its volume beyond the needle pass's bound: there they remove only
+///   the thin ones and specks of [`is_needle_to_remove`](crate::is_needle_to_remove), or
+///   none, and the well-shaped faces of a shell thinner than a speck's reach stay (a prism
+///   6.7·10⁶ long on a 6 × 3 end keeps its end triangles, counted here).
 ///
 /// Self-intersections are not looked for: that needs geometry queries this report avoids.
 #[non_exhaustive]
