@@ -2,19 +2,20 @@
 
 use crate::geom::Plane;
 #[cfg(test)]
-use crate::hash::{KeyedHashMap, key};
+use crate::hash::key;
 
 use super::Polygon;
-use super::side::PARALLEL_BELOW;
+#[cfg(test)]
+use super::planes::edge_owners;
 
 /// Gives the polygons of each flat face one plane, bit for bit: that of the first polygon of
 /// the face (in the order given). A face is grown across `neighbours` (pairs of indices into
 /// `polygons` that meet along an edge, either way round) from that polygon to neighbours of
 /// the same source facing the same way, whose planes cross its plane at a sine below
-/// [`PARALLEL_BELOW`] and all of whose vertices lie within `tol` of it: the triangles of a
-/// tessellated flat face, which merge into several polygons where a larger one would not be
-/// strictly convex (a grid's cells), each with its own Newell plane, the same plane up to
-/// rounding. Mesh import's coplanar merge gives the pairs: it tries every edge of every
+/// [`PARALLEL_BELOW`](super::side::PARALLEL_BELOW) and all of whose vertices lie within `tol`
+/// of it: the triangles of a tessellated flat face, which merge into several polygons where
+/// a larger one would not be strictly convex (a grid's cells), each with its own Newell
+/// plane, the same plane up to rounding. Mesh import's coplanar merge gives the pairs: it tries every edge of every
 /// polygon it makes, so those it refused are the polygon's edges (no hashing of positions).
 ///
 /// A boolean cuts such a face on one line only if its polygons share one plane. Where another
@@ -70,49 +71,22 @@ pub(crate) fn share_face_planes(polygons: &mut [Polygon], neighbours: &[(u32, u3
     }
 }
 
-/// [`share_face_planes`] as round 23 first wrote it, its neighbours found by hashing every
-/// directed edge by its ends' positions: kept for the tests that the merge's neighbours give
-/// the same planes.
+/// [`share_face_planes`] with its neighbours found by position (the polygons holding an edge
+/// the other way round, ends bit for bit, as [`edge_owners`] keys them): kept for the tests
+/// that the merge's neighbours give the same planes.
 #[cfg(test)]
 pub(crate) fn share_face_planes_by_position(polygons: &mut [Polygon], tol: f64) {
-    let corners = polygons.iter().map(|p| p.vertices.len()).sum();
-    let mut owner: KeyedHashMap<([u64; 3], [u64; 3]), u32> =
-        KeyedHashMap::with_capacity_and_hasher(corners, Default::default());
+    let owner = edge_owners(polygons);
+    let mut neighbours = Vec::new();
     for (i, p) in polygons.iter().enumerate() {
         let v = &p.vertices;
         for k in 0..v.len() {
-            owner.insert((key(v[k]), key(v[(k + 1) % v.len()])), i as u32);
-        }
-    }
-    let mut face = vec![u32::MAX; polygons.len()];
-    let mut stack = Vec::new();
-    for first in 0..polygons.len() {
-        if face[first] != u32::MAX {
-            continue;
-        }
-        face[first] = first as u32;
-        let (plane, source) = (polygons[first].plane, polygons[first].source);
-        stack.push(first);
-        while let Some(i) = stack.pop() {
-            let v = &polygons[i].vertices;
-            for k in 0..v.len() {
-                let Some(&j) = owner.get(&(key(v[(k + 1) % v.len()]), key(v[k]))) else {
-                    continue;
-                };
-                let j = j as usize;
-                if face[j] == u32::MAX && same_face(&polygons[j], &plane, source, tol) {
-                    face[j] = first as u32;
-                    stack.push(j);
-                }
+            if let Some(&j) = owner.get(&(key(v[(k + 1) % v.len()]), key(v[k]))) {
+                neighbours.push((i as u32, j));
             }
         }
     }
-    for i in 0..polygons.len() {
-        let first = face[i] as usize;
-        if first != i {
-            polygons[i].plane = polygons[first].plane;
-        }
-    }
+    share_face_planes(polygons, &neighbours, tol);
 }
 
 /// Whether `p` lies in `plane` of a face of `source`, up to rounding (see
@@ -120,7 +94,7 @@ pub(crate) fn share_face_planes_by_position(polygons: &mut [Polygon], tol: f64) 
 fn same_face(p: &Polygon, plane: &Plane, source: u32, tol: f64) -> bool {
     p.source == source
         && p.plane.normal.dot(plane.normal) > 0.0
-        && p.plane.normal.cross(plane.normal).length() < PARALLEL_BELOW
+        && p.parallel_to(plane.normal)
         && p.vertices.iter().all(|&v| plane.distance(v).abs() <= tol)
 }
 

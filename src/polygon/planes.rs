@@ -162,6 +162,20 @@ pub(super) fn plane_bits(p: &Plane) -> [u64; 6] {
     ]
 }
 
+/// The polygon holding each directed edge of `polygons`, keyed by its ends' positions bit for
+/// bit (the last one where several do).
+pub(crate) fn edge_owners(polygons: &[Polygon]) -> KeyedHashMap<([u64; 3], [u64; 3]), u32> {
+    let corners = polygons.iter().map(|p| p.vertices.len()).sum();
+    let mut owner = KeyedHashMap::with_capacity_and_hasher(corners, Default::default());
+    for (i, p) in polygons.iter().enumerate() {
+        let v = &p.vertices;
+        for k in 0..v.len() {
+            owner.insert((key(v[k]), key(v[(k + 1) % v.len()])), i as u32);
+        }
+    }
+    owner
+}
+
 /// Gives every edge of `polygons` whose plane is not known the plane of the polygon across it
 /// (the one holding the same edge the other way, same ends bit for bit). Edges with no such
 /// neighbour stay unknown, and are cut by interpolation.
@@ -171,15 +185,7 @@ pub(crate) fn attach_edge_planes(polygons: &mut [Polygon]) {
     if polygons.iter().all(known) {
         return;
     }
-    let corners = polygons.iter().map(|p| p.vertices.len()).sum();
-    let mut owner: KeyedHashMap<([u64; 3], [u64; 3]), u32> =
-        KeyedHashMap::with_capacity_and_hasher(corners, Default::default());
-    for (i, p) in polygons.iter().enumerate() {
-        let v = &p.vertices;
-        for k in 0..v.len() {
-            owner.insert((key(v[k]), key(v[(k + 1) % v.len()])), i as u32);
-        }
-    }
+    let owner = edge_owners(polygons);
     let mut found: Vec<(usize, Arc<[Plane]>)> = Vec::new();
     for (i, p) in polygons.iter().enumerate() {
         if known(p) {
