@@ -77,9 +77,9 @@ pub const NEEDLE_THIN: f64 = 100.0;
 /// the needle pass's own sweep allowance.
 pub const NEEDLE_WELD_TOLERANCES: f64 = 32.0;
 
-/// ... or a speck of its shell: area below `NEEDLE_AREA · s²`, `s` the shell's diagonal, or
-/// this many slab thicknesses `2V/A` of the shell (volume `V`, area `A`) on a shell whose that
-/// is below [`NEEDLE_THIN_SHELL`] of its diagonal.
+/// ... or a speck of its shell: area below `NEEDLE_AREA · s²`, where `s` is this many slab
+/// thicknesses `2V/A` of the shell (volume `V`, area `A`) when that is below
+/// [`NEEDLE_THIN_SHELL`] of its diagonal, else the shell's diagonal.
 pub const NEEDLE_SPECK_THICKNESSES: f64 = 6.0;
 
 /// A shell is thinner than a speck of its own length when [`NEEDLE_SPECK_THICKNESSES`] of its
