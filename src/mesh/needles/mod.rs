@@ -175,21 +175,27 @@ pub(crate) fn remove_needles(
     let tolerance = Tolerance::RELATIVE * bbox.diagonal().min(scale);
     let mut frozen = vec![false; work.shell_volume.len()];
     let mut strict = frozen.clone();
+    // The mesh's volume and area, measured once and only where some change needs them (each
+    // is a pass over every triangle: on fandisk − moved they were a third of this pass).
+    let whole = std::cell::OnceCell::new();
     for _ in 0..NEEDLE_RERUNS {
         let (change, seen_area) = run(&mut work, queue.clone(), &frozen, bbox.center());
         let swept = NEEDLE_SWEPT_TOLERANCES * tolerance;
         // Within what the touched triangles' area explains, the shell need not be measured.
-        let beyond = |s: usize, volume: f64, area: f64| {
-            change[s].abs() > swept * seen_area[s]
-                && change[s].abs() > NEEDLE_VOLUME_CHANGE * volume.abs() + swept * area
+        let beyond = |s: usize| {
+            change[s].abs() > swept * seen_area[s] && {
+                let &(volume, area): &(f64, f64) =
+                    whole.get_or_init(|| (original.volume(), original.area()));
+                change[s].abs() > NEEDLE_VOLUME_CHANGE * volume.abs() + swept * area
+            }
         };
         // The tetrahedra deleted whole (the last entry) against the whole mesh, as they go.
-        if beyond(frozen.len(), original.volume(), original.area()) {
+        if beyond(frozen.len()) {
             break;
         }
         let mut over = false;
         for s in 0..frozen.len() {
-            if beyond(s, original.volume(), original.area()) {
+            if beyond(s) {
                 // First only the needles the kernel must remove; then none.
                 if strict[s] {
                     frozen[s] = true;
