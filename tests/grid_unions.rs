@@ -187,7 +187,9 @@ fn sphere_minus_itself_turned_a_ten_thousandth_of_a_degree() {
             "{what}: mesh {:e} want {want:e}",
             report.volume
         );
-        assert!(elapsed.as_secs_f64() < 2.0, "{what}: {elapsed:?}");
+        // A guard against a runaway (512×256 once took 154 s), not a speed measure: both sizes
+        // take 0.6 s together here, and over 2 s on the shared machine under load.
+        assert!(elapsed.as_secs_f64() < 30.0, "{what}: {elapsed:?}");
     }
 }
 

@@ -144,8 +144,13 @@ pub(crate) fn remove_needles(
         return 0;
     }
     let mut work = Work::new(std::mem::take(mesh), scale);
+    // Every needle passes the first check (no shell's threshold is above the mesh's), which is
+    // the cheaper one.
     let queue: Vec<u32> = (0..work.tris.len() as u32)
-        .filter(|&t| work.is_needle(t))
+        .filter(|&t| {
+            twice_area_squared(work.tris[t as usize].map(|i| work.positions[i as usize])) < bar
+                && work.is_needle(t)
+        })
         .collect();
     if queue.is_empty() {
         *mesh = Mesh {
