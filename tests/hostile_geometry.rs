@@ -44,8 +44,10 @@ fn a_tiny_cube_at_a_unit_cube_corner_never_gives_a_broken_result_with_success() 
 /// open, with 951 and 3,678 boundary edges, and refused). At 128×64 (9.05·10⁻⁸; 30 boundary
 /// edges at the pole fans before) since a vertex near a cutting plane beside an edge running
 /// nearly along it is judged by the band by the edge's slope (`Polygon::split`). Larger
-/// tessellations are left to the promise: right, or refused with exit 2 (256×128 is refused,
-/// 1,666 boundary edges at its poles; 512×256 is past the work budget).
+/// tessellations are left to the promise: right, or refused with exit 2 (256×128 is refused:
+/// 1,666 boundary edges, none at the poles since vertices near planes crossing at sines below
+/// 0.1 are judged by the band by the angle, the rest in slits along the crossing lines half a
+/// band from the poles; 512×256 is past the work budget).
 #[test]
 fn a_sphere_less_itself_turned_a_hair_is_closed_with_the_slivers_volume() {
     let dir = Scratch::new("sphere-turned");

@@ -14,7 +14,7 @@ impl Polygon {
     /// coplanar with its own plane whatever its vertices say (see [`Plane::is_same_or_flipped`]),
     /// and with any plane all its vertices lie on, as told below.
     ///
-    /// Where the planes cross at a sine below 10⁻³ (`ON_BAND_BELOW`) and a vertex lies within
+    /// Where the planes cross at a sine below 0.1 (`ON_BAND_BELOW`) and a vertex lies within
     /// `eps`, a vertex counts as on the plane within `eps` times the sine of the angle between
     /// them (or the plane's rounding noise), not `eps`: where they cross at a tiny angle α,
     /// `eps` would reach `eps / α` across the polygon, and the cut would run through a vertex
@@ -31,10 +31,11 @@ impl Polygon {
     /// or by both.
     ///
     /// So too, where the planes cross clearly, for a vertex within `eps` beside an edge running
-    /// along the plane at a slope below 10⁻³ to an end beyond `eps`: `eps` of the plane is `eps` over the slope along
+    /// along the plane at a slope below 0.1 to an end beyond `eps`: `eps` of the plane is `eps` over the slope along
     /// the edge, and such a vertex is on the plane within `eps` times the slope (or the noise).
     /// Near the poles of a 128×64 sphere less itself turned 10⁻⁴° every fan facet of either
-    /// passes within 10⁻⁶ of the pole, crossing the other's at sines of 10⁻³ to 10⁻²: corners
+    /// passes within 10⁻⁶ of the pole, crossing the other's at sines of 10⁻³ to 10⁻² (within
+    /// the band by the angle since `ON_BAND_BELOW` is 0.1; by the slope before): corners
     /// 3·10⁻¹² off a plane counted as on it, each operand's cut along a crossing line ran
     /// 1.5·10⁻¹⁰ beside the other's, its vertices 5·10⁻⁹ apart along it (30 boundary edges).
     ///
