@@ -115,8 +115,8 @@ mod topology;
 
 pub use error::{Error, MeshDefect, Result};
 pub use geom::{
-    Aabb, MAX_COORDINATE, NEEDLE_SPECK_THICKNESSES, NEEDLE_THIN, NEEDLE_WELD_TOLERANCES, Plane,
-    Side, Tolerance, is_needle_to_remove,
+    Aabb, MAX_COORDINATE, NEEDLE_SPECK_THICKNESSES, NEEDLE_THIN, NEEDLE_THIN_SHELL,
+    NEEDLE_WELD_TOLERANCES, Plane, Side, Tolerance, is_needle_to_remove,
 };
 pub use io::{
     Format, MAX_BUFFER_BYTES, MAX_READ_TRIANGLES, OutFile, ParseFormatError, as_read_back_from,

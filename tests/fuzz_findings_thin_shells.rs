@@ -115,10 +115,19 @@ fn scenes_bsp_route_of_i_beams_lose_their_thin_needles() {
             .unwrap();
         let report = solid.to_mesh().report();
         let exact = solid.volume();
-        // Within the needle pass's 1 % bound: bsp_15, bsp_19 and bsp_21 are 1.6e-3, 5.4e-3 and
-        // 1.2e-3 under the solid's volume (the others within 2e-8).
+        // The route's mesh has the solid's volume (to 4e-8 before the needle pass). The pass
+        // changes it where a thin needle's flip sweeps the tetrahedron on its long edge: the
+        // needle's area (under 10⁻¹² d², d 1.3·10⁶) times the reach of the neighbour across
+        // that edge, an end face's triangle 10⁴ wide: bsp_15, bsp_19 and bsp_21 end 1.6e-3,
+        // 5.4e-3 and 1.2e-3 under (one flip of -4,638 on bsp_15), within the pass's 1 % bound
+        // of the shell. The others end within 4e-8.
+        let bound = if [15, 19, 21].contains(&i) {
+            1e-2
+        } else {
+            1e-7
+        };
         assert!(
-            report.is_closed_manifold() && (report.volume - exact).abs() < 1e-2 * exact.abs(),
+            report.is_closed_manifold() && (report.volume - exact).abs() < bound * exact.abs(),
             "{name}: {exact} {report}"
         );
     }

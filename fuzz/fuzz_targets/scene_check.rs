@@ -15,9 +15,10 @@
 //! reach, or a speck of its shell judged by its slab thickness `2V/A`). A well-shaped triangle
 //! larger than both is the input's own detail on a shell thinner than it is long: the end face
 //! of a prism 6.7·10⁶ long on a 6 × 3 end (`2V/A` = 1.5; its end triangles, of area 9, are below
-//! 10⁻¹² d² = 44 by its diagonal). On a cube or a sphere (diagonal 5.2 × `2V/A`) the speck
-//! rule is the report's; on less compact shells it is looser than the report's (the stored
-//! brackets' diagonals are 10 to 104 slab thicknesses): a speck there is judged by 6 × `2V/A`.
+//! 10⁻¹² d² = 44 by its diagonal). The thickness judges specks only on shells whose 6 × `2V/A`
+//! is under 10⁻⁵ of their diagonal ([`bspcsg::NEEDLE_THIN_SHELL`]); on every other shell (a cube
+//! or a sphere is 5.2 slab thicknesses across, the stored brackets 10 to 10⁴) the speck rule
+//! is the report's.
 
 use bspcsg::glam::DVec3;
 use bspcsg::{Aabb, BakeOptions, Mesh, Scene, TessellationOptions, Tolerance};

@@ -31,17 +31,16 @@ pub(super) struct Work {
     /// The plane tolerance of booleans at the shell's scale: moves this small are always fine.
     pub(super) tolerance: Vec<f64>,
     /// Per shell: its diagonal as capped, and its slab thickness `2V/A` (see
-    /// [`crate::geom::is_needle_to_remove`]).
+    /// [`crate::geom::is_needle_to_remove`]; set by [`Work::make_strict`], where it is used).
     diagonal: Vec<f64>,
     slab: Vec<f64>,
     pub(super) shell_tris: Vec<usize>,
-    /// Per vertex: its shell's index as the pass found it (neck cuts add shells later), and
-    /// per such shell its volume then.
+    /// Per vertex: its shell's index as the pass found it (neck cuts add shells later).
     pub(super) first_shell: Vec<u32>,
-    pub(super) shell_volume: Vec<f64>,
     /// Per shell as the pass found it: remove only the needles the kernel must
-    /// ([`crate::geom::is_needle_to_remove`]), not the shell's own well-shaped detail.
-    pub(super) strict: Vec<bool>,
+    /// ([`crate::geom::is_needle_to_remove`]), not the shell's own well-shaped detail
+    /// ([`Work::make_strict`]).
+    strict: Vec<bool>,
     /// The cap on every shell's diagonal (see [`super::remove_needles`]).
     scale: f64,
 }
@@ -56,34 +55,19 @@ impl Work {
         let mut shell = vec![u32::MAX; n];
         let mut boxes: Vec<Aabb> = Vec::new();
         let mut shell_tris: Vec<usize> = Vec::new();
-        // Each shell's volume (about its first corner, for precision) and area, six and two
-        // times over.
-        let (mut origin, mut volume, mut surface) = (Vec::new(), Vec::new(), Vec::new());
         for t in &mesh.triangles {
             let root = sets.find(t[0] as usize);
             if shell[root] == u32::MAX {
                 shell[root] = boxes.len() as u32;
                 boxes.push(Aabb::EMPTY);
                 shell_tris.push(0);
-                origin.push(mesh.positions[t[0] as usize]);
-                volume.push(0.0);
-                surface.push(0.0);
             }
             let s = shell[root] as usize;
             shell_tris[s] += 1;
             for &v in t {
                 boxes[s].grow(mesh.positions[v as usize]);
             }
-            let [a, b, c] = t.map(|v| mesh.positions[v as usize] - origin[s]);
-            let n = (b - a).cross(c - a);
-            volume[s] += a.dot(n);
-            surface[s] += n.length();
         }
-        // 2V/A = 2 · (6V / 6) / (2A / 2) = (2/3) · 6V / 2A.
-        let shell_volume: Vec<f64> = volume.iter().map(|v| v / 6.0).collect();
-        let slab: Vec<f64> = (0..boxes.len())
-            .map(|s| 2.0 / 3.0 * volume[s].abs() / surface[s])
-            .collect();
         for v in 0..n {
             shell[v] = shell[sets.find(v)];
         }
@@ -96,8 +80,8 @@ impl Work {
         }
         Work {
             first_shell: shell.clone(),
-            strict: vec![false; shell_volume.len()],
-            shell_volume,
+            strict: vec![false; boxes.len()],
+            slab: vec![f64::INFINITY; boxes.len()],
             alive: vec![true; mesh.triangles.len()],
             positions: mesh.positions,
             tris: mesh.triangles,
@@ -108,9 +92,23 @@ impl Work {
             max_move: diag.iter().map(|d| SPECK_MOVE * d).collect(),
             tolerance: diag.iter().map(|d| Tolerance::RELATIVE * d).collect(),
             diagonal: diag,
-            slab,
             shell_tris,
             scale,
+        }
+    }
+
+    /// How many shells the pass found.
+    pub(super) fn shells(&self) -> usize {
+        self.strict.len()
+    }
+
+    /// Marks the shells (as the pass found them) of `strict`, whose volume `volume` and area
+    /// `area` are [`shell_measures`]' of the mesh this work was made from: in those, only the
+    /// needles of [`crate::geom::is_needle_to_remove`] are removed. Made before any operation.
+    pub(super) fn make_strict(&mut self, strict: &[bool], volume: &[f64], area: &[f64]) {
+        self.strict.clone_from_slice(strict);
+        for s in 0..strict.len() {
+            self.slab[s] = 2.0 * volume[s].abs() / area[s];
         }
     }
 
@@ -349,4 +347,22 @@ impl Work {
         };
         left
     }
+}
+
+/// Each shell's volume and area in `mesh`, by `shell` (per vertex, [`Work::first_shell`] of a
+/// work made from `mesh`; `shells` of them). Each volume is taken about its shell's first
+/// corner, for precision. Measured only where the pass's change to a shell needs them (one
+/// cross product per triangle): on most meshes with needles no shell comes near the bound.
+pub(super) fn shell_measures(mesh: &Mesh, shell: &[u32], shells: usize) -> (Vec<f64>, Vec<f64>) {
+    let (mut volume, mut area) = (vec![0.0; shells], vec![0.0; shells]);
+    let mut origin = vec![None; shells];
+    for t in &mesh.triangles {
+        let s = shell[t[0] as usize] as usize;
+        let o = *origin[s].get_or_insert(mesh.positions[t[0] as usize]);
+        let [a, b, c] = t.map(|v| mesh.positions[v as usize] - o);
+        let n = (b - a).cross(c - a);
+        volume[s] += a.dot(n) / 6.0;
+        area[s] += 0.5 * n.length();
+    }
+    (volume, area)
 }
