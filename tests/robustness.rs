@@ -3,7 +3,7 @@
 
 mod common;
 
-use bspcsg::glam::DVec3;
+use bspcsg::glam::{DQuat, DVec3};
 use bspcsg::{BakeOptions, Mesh, Scene, Solid};
 use common::{assert_closed_manifold, models, needles, obj_box};
 
@@ -429,4 +429,32 @@ fn grid_slabs_are_closed_with_volume_two() {
         assert_clean(&mesh, &format!("slab {n}"));
         assert!((mesh.volume() - 2.0).abs() < 1e-12, "{}", mesh.volume());
     }
+}
+
+/// Round 17's fork input 93aab2f0, minimised: an exact 0.125 cube ∪ its intersection with a
+/// slab turned 1e-5° about the diagonal, ∪ a bar 0.375 long through it, ∪ the cube again. The
+/// last union must change nothing; it kept four pieces of the cube's faces lying in the bar's
+/// (three flat shells, the solid 1.7e-4 above its mesh). Traced: such a piece, routed along the
+/// bar's face x = −0.5625 and labelled by a ray from two tolerances inside it, read outside:
+/// the ray left through a face y = −0.4375 whose ring turned back by one ulp at a corner
+/// (x = −0.4375 + 1 ulp, then −0.4375), and that 5.5e-17 edge, judged as a boundary, put the
+/// hit outside the face (`crossing` in `bsp/surface/ray.rs` skips edges within the tolerance).
+#[test]
+fn union_with_a_cube_inside_a_bar_beside_its_turned_twin_changes_nothing() {
+    let at = |solid: Solid| solid.translate(DVec3::splat(-0.5)).unwrap();
+    let cube = || at(Solid::cube(0.125).unwrap());
+    // 1e-5° about −(1, 1, 1), bit for bit as the fuzz program turns it.
+    let turn = DQuat::from_axis_angle(DVec3::splat(-0.5773502691896258), 1.7453292519943297e-7);
+    let turned = Solid::cube(0.125).unwrap().rotate(turn).unwrap();
+    let slab = at(Solid::cuboid(DVec3::new(0.625, 0.125, 1.125)).unwrap());
+    let bar = at(Solid::cuboid(DVec3::new(0.125, 0.125, 0.375)).unwrap());
+    let twins = &(&slab & &at(turned)) | &cube();
+    let barred = &twins | &bar;
+    let again = &barred | &cube();
+    let mesh = again.to_mesh();
+    assert_clean(&mesh, "bar ∪ cube");
+    let want = barred.volume();
+    assert!((want - 0.375 * 0.125 * 0.125).abs() < 1e-9, "{want}");
+    assert!((again.volume() - want).abs() < 1e-15, "{}", again.volume());
+    assert!((mesh.volume() - want).abs() < 1e-10, "{}", mesh.volume());
 }

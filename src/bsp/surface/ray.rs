@@ -271,7 +271,13 @@ fn crossing(poly: &Polygon, origin: DVec3, dir: DVec3, eps: f64) -> Crossing {
         let (a, b) = (v[i], v[(i + 1) % v.len()]);
         let edge = b - a;
         let len = edge.length();
-        if len == 0.0 {
+        // An edge within the tolerance long has no direction to judge by: one 5.5e-17 long
+        // (corners -0.4375 and -0.4375 + 1 ulp, the ring turning back along its neighbour) put
+        // every hit on its outer side, and a ray out of a bar crossing its face read zero
+        // crossings (a cube's face inside the bar labelled outside and kept: a flat shell).
+        // Skipped, the polygon grows at most to the neighbours' lines, within the edge's length
+        // of one of them: a hit there is within the tolerance, a graze as before.
+        if len <= eps {
             continue;
         }
         inner = inner.min(edge.cross(hit - a).dot(plane.normal) / len);
@@ -496,6 +502,28 @@ mod tests {
         let flush = solid(0.0);
         let s = Surface::new(flush.polygons(), eps);
         assert_eq!(s.crossings_off(c, off, DVec3::X), Some(0));
+    }
+
+    /// A face y = −0.4375 whose ring turns back by one ulp at a corner (x = −0.4375 + 1 ulp,
+    /// then −0.4375): a ray from inside a bar crossing the face far from that corner hits it.
+    /// Judged by the 5.5e-17 edge, whose direction is the reverse of its neighbour's, every
+    /// point lay outside the polygon.
+    #[test]
+    fn an_edge_within_the_tolerance_long_does_not_bound_a_polygon() {
+        let y = -0.4375;
+        let ring = [
+            DVec3::new(-0.437_499_999_999_999_94, y, -0.4375),
+            DVec3::new(-0.4375, y, -0.4375),
+            DVec3::new(-0.5625, y, -0.5625),
+            DVec3::new(-0.5625, y, -0.4375),
+        ];
+        let face = Polygon::new(&ring, 0).unwrap();
+        assert!(face.plane().normal.y > 0.0);
+        let dir = DVec3::from(DIRECTIONS[0]).normalize();
+        let hit = |from: DVec3| matches!(crossing(&face, from, dir, 2e-13), Crossing::Hit(_));
+        assert!(hit(DVec3::new(-0.5625 + 4e-13, -0.5423, -0.5524)));
+        // Beyond the diagonal edge: a miss, as before.
+        assert!(!hit(DVec3::new(-0.5625 + 4e-13, -0.5423, -0.6)));
     }
 
     /// A segment from a point 3e-11 inside a unit cube's face x = 1 to one 4e-10 outside it,
