@@ -23,8 +23,6 @@
 use bspcsg::glam::DVec3;
 use bspcsg::{Aabb, BakeOptions, Mesh, Scene, TessellationOptions, Tolerance};
 
-/// The relative area below which a triangle is a needle (`MeshReport::NEEDLE_AREA`).
-const NEEDLE_AREA: f64 = bspcsg::MeshReport::NEEDLE_AREA;
 /// How far beyond the region where its operands met a boolean's needles are judged.
 const REGION_REACH: f64 = 16.0;
 /// The resolution of the bake.
@@ -82,7 +80,7 @@ pub fn check(json: &str) -> Result<(), String> {
     check_bsp_route(&scene)
 }
 
-/// Triangles of area below `NEEDLE_AREA` × d², d the diagonal of their shell's box capped at
+/// Triangles of area below [`bspcsg::MeshReport::NEEDLE_AREA`] × d², d the diagonal of their shell's box capped at
 /// `reach`, that are slivers or specks of their shell, except those on a neck (see the module
 /// docs).
 pub fn needles_within(mesh: &Mesh, reach: f64) -> usize {
