@@ -246,7 +246,7 @@ pub(super) fn banded(sine: f64) -> bool {
 /// well defined, and only the band and the weld agree (measured when this bound also set where
 /// edges were cut at meets: 9 boundary edges with meets up to 1e-3, 3 up to 1e-6, none at
 /// 1e-7). With edge cuts at meets up to `MEET_BELOW` (for an edge whose own two planes cross
-/// below `GRAZING` only where all three planes are nearly parallel, see `CutEdge::cut`),
+/// below `MEET_BELOW` only where all three planes are nearly parallel, see `CutEdge::cut`),
 /// Havocglass8's booleans stay closed and right.
 pub(super) const NEAR_PARALLEL: f64 = 1e-7;
 
