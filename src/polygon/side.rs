@@ -185,7 +185,7 @@ impl Polygon {
 /// (3.5·10⁻¹²). Judged by `eps`, the two polygons beside the edge took different planes as
 /// through the same corner, and their cuts ended 8·10⁻¹¹ apart along it (653 boundary edges
 /// in slits 8·10⁻¹¹ × 7·10⁻⁹). With the band below 0.1 those are gone (2,319 → 1,666 boundary
-/// edges in all). Above 0.1 the two bands differ by less than a factor of ten, and clear
+/// edges in all; the rest went with edge cuts at meets, see `CutEdge::cut`). Above 0.1 the two bands differ by less than a factor of ten, and clear
 /// crossings keep the tolerance they always had.
 ///
 /// The bound moves more than the band by the angle: it also sets where the band by an edge's
@@ -246,7 +246,7 @@ pub(super) fn banded(sine: f64) -> bool {
 /// well defined, and only the band and the weld agree (measured when this bound also set where
 /// edges were cut at meets: 9 boundary edges with meets up to 1e-3, 3 up to 1e-6, none at
 /// 1e-7). With edge cuts at meets up to `MEET_BELOW` (for an edge whose own two planes cross
-/// below `GRAZING` only where all three planes are nearly parallel, see `CutEdge::cut`),
+/// below `MEET_BELOW` only where all three planes are nearly parallel, see `CutEdge::cut`),
 /// Havocglass8's booleans stay closed and right.
 pub(super) const NEAR_PARALLEL: f64 = 1e-7;
 
