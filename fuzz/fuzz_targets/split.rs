@@ -39,7 +39,10 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     // The cutting plane passes near a vertex, tilted by an input-chosen (possibly tiny) angle.
-    let through = ring[data[11] as usize % sides] + q * DVec3::new(unit(data, 12) - 0.5, 0.0, 0.0) * scale * 10f64.powi(-((data[14] % 12) as i32));
+    let through = ring[data[11] as usize % sides]
+        + q * DVec3::new(unit(data, 12) - 0.5, 0.0, 0.0)
+            * scale
+            * 10f64.powi(-((data[14] % 12) as i32));
     let tilt = 10f64.powi(-((data[15] % 15) as i32));
     let normal = q * DVec3::new(unit(data, 16) - 0.5, unit(data, 18) - 0.5, tilt);
     let Some(plane) = Plane::from_point_normal(through, normal) else {
@@ -66,7 +69,10 @@ fuzz_target!(|data: &[u8]| {
             let rel = 1e-9 + 64.0 * f64::EPSILON * (far.abs() / scale);
             let band = band_area(polygon.vertices(), &plane, eps);
             assert!(f + b >= a * (1.0 - rel), "areas {f} + {b} < {a}: a gap");
-            assert!(f + b <= a * (1.0 + rel) + band, "areas {f} + {b} > {a} + band {band}");
+            assert!(
+                f + b <= a * (1.0 + rel) + band,
+                "areas {f} + {b} > {a} + band {band}"
+            );
         }
     }
 });
