@@ -28,8 +28,9 @@ impl Surface<'_> {
     ///
     /// One descent of both hierarchies together ([`Bvh::visit_pairs_within`]), in parallel over
     /// pieces of this one: walking `other`'s from its root once per leaf of this one entered
-    /// its top levels again for every leaf. Each pair of polygons found settles both sides'
-    /// flags at once.
+    /// its top levels again for every leaf. It gives only pairs whose own boxes meet within the
+    /// margin, having kept each leaf's polygons to those near the other leaf's box first. Each
+    /// pair of polygons found settles both sides' flags at once.
     pub fn near_each_other(&self, other: &Surface, margin: f64) -> (Vec<bool>, Vec<bool>) {
         let mine: Vec<AtomicBool> = self.boxes.iter().map(|_| AtomicBool::new(false)).collect();
         let theirs: Vec<AtomicBool> = other.boxes.iter().map(|_| AtomicBool::new(false)).collect();
@@ -38,12 +39,13 @@ impl Surface<'_> {
         let apart = margin + NEAR_GAP * self.eps.max(other.eps);
         let pieces = self.bvh.cut(64);
         pieces.par_iter().for_each(|&piece| {
-            self.bvh
-                .visit_pairs_within(piece, &other.bvh, margin, |i, j| {
+            self.bvh.visit_pairs_within(
+                piece,
+                &other.bvh,
+                margin,
+                (&self.boxes, &other.boxes),
+                |i, j| {
                     let (i, j) = (i as usize, j as usize);
-                    if !self.boxes[i].overlaps(&other.boxes[j], margin) {
-                        return;
-                    }
                     let (seen_i, seen_j) = (
                         mine[i].load(Ordering::Relaxed),
                         theirs[j].load(Ordering::Relaxed),
@@ -62,7 +64,8 @@ impl Surface<'_> {
                     if !seen_j {
                         theirs[j].store(true, Ordering::Relaxed);
                     }
-                });
+                },
+            );
         });
         let plain =
             |flags: Vec<AtomicBool>| flags.into_iter().map(AtomicBool::into_inner).collect();
