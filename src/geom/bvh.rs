@@ -230,8 +230,10 @@ impl Bvh {
         {
             return;
         }
-        let mut stack: smallvec::SmallVec<[(u32, u32); 128]> = smallvec::smallvec![(from, 0)];
-        while let Some((a, b)) = stack.pop() {
+        // The first pair of children found overlapping is taken next without the stack.
+        let mut stack: smallvec::SmallVec<[(u32, u32); 128]> = smallvec::SmallVec::new();
+        let mut next = Some((from, 0));
+        while let Some((a, b)) = next.take().or_else(|| stack.pop()) {
             let (na, nb) = (&self.nodes[a as usize], &other.nodes[b as usize]);
             // Descend the inner node with the larger box, or the only inner one.
             let down_a = match (na.count > 0, nb.count > 0) {
@@ -266,16 +268,20 @@ impl Bvh {
                     na.bbox.size().length_squared() >= nb.bbox.size().length_squared()
                 }
             };
+            let mut go = |pair: (u32, u32)| match next {
+                None => next = Some(pair),
+                Some(_) => stack.push(pair),
+            };
             if down_a {
                 for c in children(self, a) {
                     if self.nodes[c as usize].bbox.overlaps(&nb.bbox, margin) {
-                        stack.push((c, b));
+                        go((c, b));
                     }
                 }
             } else {
                 for c in children(other, b) {
                     if other.nodes[c as usize].bbox.overlaps(&na.bbox, margin) {
-                        stack.push((a, c));
+                        go((a, c));
                     }
                 }
             }
