@@ -138,24 +138,35 @@ impl Bvh {
         if self.nodes.is_empty() {
             return;
         }
-        // Depth is logarithmic (median splits), so a small inline stack suffices.
-        let mut stack: smallvec::SmallVec<[u32; 64]> = smallvec::smallvec![0u32];
-        while let Some(n) = stack.pop() {
+        // Median splits halve every range, so the tree is under 32 levels deep for any `u32`
+        // count of items, and the descent keeps at most one second child per level: a plain
+        // array holds the stack (a `SmallVec`'s push and pop, with their check for a spilled
+        // buffer, were a third of the walk of the check for crossing triangles).
+        let mut stack = [0u32; 64];
+        let mut depth = 0;
+        let mut n = 0u32;
+        loop {
             let node = &self.nodes[n as usize];
-            if (node.group != NO_GROUP && skip(node.group)) || !enter(&node.bbox) {
-                continue;
-            }
-            if node.count > 0 {
+            if (node.group == NO_GROUP || !skip(node.group)) && enter(&node.bbox) {
+                if node.count == 0 {
+                    // The first child next, without the stack: the order of pushing both.
+                    stack[depth] = node.start_or_right;
+                    depth += 1;
+                    n += 1;
+                    continue;
+                }
                 let s = node.start_or_right as usize;
                 for &i in &self.items[s..s + node.count as usize] {
                     if item(i) {
                         return;
                     }
                 }
-            } else {
-                stack.push(node.start_or_right);
-                stack.push(n + 1);
             }
+            if depth == 0 {
+                return;
+            }
+            depth -= 1;
+            n = stack[depth];
         }
     }
 
@@ -407,6 +418,54 @@ mod tests {
         });
         hit.sort();
         assert_eq!(hit, (0..100).filter(|i| i % 7 == 0).collect::<Vec<_>>());
+    }
+
+    /// The walk meets items in the order of a recursive descent, first child first, passing
+    /// over skipped groups' subtrees and boxes `enter` refuses, and stops where `item` asks.
+    #[test]
+    fn visit_skipping_walks_depth_first_in_order() {
+        let at = |t: f64| DVec3::new(t.cos(), t.sin(), 0.1 * t);
+        let boxes: Vec<Aabb> = (0..700)
+            .map(|i| Aabb::new(at(i as f64 * 0.03), at(i as f64 * 0.03) + 0.05))
+            .collect();
+        let groups: Vec<u32> = (0..700)
+            .map(|i| if i % 3 == 0 { NO_GROUP } else { i / 90 })
+            .collect();
+        let bvh = Bvh::build_grouped(&boxes, &groups);
+        let (skip, q) = (
+            |g: u32| g % 2 == 1,
+            Aabb::new(DVec3::new(-0.5, -1.0, 0.0), DVec3::new(1.0, 1.0, 1.2)),
+        );
+        fn walk(t: &Bvh, n: usize, go: &dyn Fn(&Node) -> bool, out: &mut Vec<u32>) {
+            let node = &t.nodes[n];
+            if go(node) && node.count > 0 {
+                let s = node.start_or_right as usize;
+                out.extend(&t.items[s..s + node.count as usize]);
+            } else if go(node) {
+                walk(t, n + 1, go, out);
+                walk(t, node.start_or_right as usize, go, out);
+            }
+        }
+        let mut want = Vec::new();
+        walk(
+            &bvh,
+            0,
+            &|n| (n.group == NO_GROUP || !skip(n.group)) && n.bbox.overlaps(&q, 0.0),
+            &mut want,
+        );
+        assert!(want.len() > 50 && want.len() < 600, "{}", want.len());
+        for stop in [want.len(), 17] {
+            let mut got = Vec::new();
+            bvh.visit_skipping(
+                skip,
+                |b| b.overlaps(&q, 0.0),
+                |i| {
+                    got.push(i);
+                    got.len() == stop
+                },
+            );
+            assert_eq!(got, want[..stop]);
+        }
     }
 
     /// Every pair of overlapping boxes, one from each tree, is met exactly once, whether the
