@@ -458,3 +458,38 @@ fn union_with_a_cube_inside_a_bar_beside_its_turned_twin_changes_nothing() {
     assert!((again.volume() - want).abs() < 1e-15, "{}", again.volume());
     assert!((mesh.volume() - want).abs() < 1e-10, "{}", mesh.volume());
 }
+
+/// Round 18's fork input a1909398, minimised: an exact 0.125 cube ∪ a 0.125 × 0.625 × 0.75 box
+/// turned 1e-5° ∪ the cube turned 1e-5° about another axis, all at one centre, ∩ the exact cube.
+/// The union holds the cube, so the intersection is the cube; it left a strip 1.4e-8 wide of
+/// the cube's face z = −0.5625 out (a flat shell, the solid 7.3e-11 below the cube). Traced:
+/// the union's tree held, at the node of the cube's face x = −0.4375, a sliver of its face
+/// z = −0.5625 standing out of the box's face by 1.3e-15, and passed it to the back as the
+/// side it lies on (`sliver_side` in `bsp/build/face.rs`). There its plane alone bounded the
+/// region behind x = −0.4375 and read outside below z = −0.5625, across the box's inside; the
+/// strip, lying in that plane, was dropped. 1.3e-15 is within the plane's rounding
+/// (`plane_noise`, 8.9e-15 there): such a vertex now reaches neither side.
+#[test]
+fn intersection_of_a_cube_with_a_union_holding_it_and_turned_twins_is_the_cube() {
+    let at = |solid: Solid| solid.translate(DVec3::splat(-0.5)).unwrap();
+    let cube = || at(Solid::cube(0.125).unwrap());
+    // 1e-5° about the fuzz program's axes, bit for bit as it turns them.
+    let turn = |axis: DVec3| DQuat::from_axis_angle(axis.normalize(), 1e-5f64.to_radians());
+    let box_axis = DVec3::new(0.579876448544782, 0.5760830254499306, 0.5760830254499306);
+    let cube_axis = DVec3::new(0.6719141883888889, -0.5204127417785771, 0.5269742893502535);
+    let slab = Solid::cuboid(DVec3::new(0.125, 0.625, 0.75)).unwrap();
+    let slab = at(slab.rotate(turn(box_axis)).unwrap());
+    let twin = at(Solid::cube(0.125).unwrap().rotate(turn(cube_axis)).unwrap());
+    let holding = &(&cube() | &slab) | &twin;
+    let result = &holding & &cube();
+    let mesh = result.to_mesh();
+    let report = assert_clean(&mesh, "union ∩ cube");
+    assert_eq!(report.shells.len(), 1, "{report}");
+    let want = 0.125f64.powi(3);
+    assert!(
+        (result.volume() - want).abs() < 1e-11,
+        "{}",
+        result.volume()
+    );
+    assert!((mesh.volume() - want).abs() < 1e-11, "{}", mesh.volume());
+}
