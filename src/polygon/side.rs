@@ -185,8 +185,9 @@ impl Polygon {
 /// (3.5·10⁻¹²). Judged by `eps`, the two polygons beside the edge took different planes as
 /// through the same corner, and their cuts ended 8·10⁻¹¹ apart along it (653 boundary edges
 /// in slits 8·10⁻¹¹ × 7·10⁻⁹). With the band below 0.1 those are gone (2,319 → 1,666 boundary
-/// edges in all; the rest went with edge cuts at meets, see `CutEdge::cut`). Above 0.1 the two bands differ by less than a factor of ten, and clear
-/// crossings keep the tolerance they always had.
+/// edges in all; the rest went with edge cuts at meets, see `CutEdge::cut`). Above 0.1 the
+/// two bands differ by less than a factor of ten, and clear crossings keep the tolerance they
+/// always had.
 ///
 /// The bound moves more than the band by the angle: it also sets where the band by an edge's
 /// slope applies in `Polygon::split` (sines from 0.1, slopes below 0.1; before, from 10⁻³ and
