@@ -150,7 +150,14 @@ impl Work {
             }
             collapses.or(flips).or(merges).or(stretches)
         } else {
-            flips.or(collapses).or(merges)
+            // A cap is flipped, unless a collapse sweeps less volume than the flip: a thin
+            // needle's flip sweeps the tetrahedron on its long edge, the needle's area times
+            // the reach of the neighbour across it, however little it moves the surface.
+            match (flips, collapses) {
+                (Some(f), Some(c)) if c.0 < f.0 => Some(c),
+                (f, c) => f.or(c),
+            }
+            .or(merges)
         };
         best.map(|(_, op)| op)
     }
