@@ -493,3 +493,60 @@ fn intersection_of_a_cube_with_a_union_holding_it_and_turned_twins_is_the_cube()
     );
     assert!((mesh.volume() - want).abs() < 1e-11, "{}", mesh.volume());
 }
+
+/// Round 18's fork input 37e0688d, minimised: a bar turned 0.298 rad united with a 0.125 cube
+/// and a 0.625 cube, both turned 1e-5° about their common diagonal (the small one inside the
+/// large), then intersected with the 0.625 cube unturned. The union cut the large cube's bottom
+/// face where the bar crosses it, so its +x face's bottom edge met the bottom's pieces at a
+/// T-junction and no neighbour's plane was known for it; the corner at its end, 6.4e-15 off the
+/// unturned cube's face x = −0.1875 (a second-order effect of the turn), then counted as on that
+/// face by the plane's rounding. The turned face was cut through that corner while the unturned
+/// one was cut on the planes' crossing line, and the cut by the bottom z = −0.8125 ended 6.3e-8
+/// from the other's: a slit (4 boundary edges), the solid 1.4e-9 below the large cube's part.
+/// The edge now takes the plane of the neighbour across the T-junction.
+#[test]
+fn intersection_of_turned_cubes_cut_by_a_bar_with_the_unturned_cube_has_no_slit() {
+    // 1e-5° about the diagonal, bit for bit as the fuzz program turns them.
+    let hair = DQuat::from_axis_angle(DVec3::splat(0.5773502691896258), 1.7453292519943297e-7);
+    let bar_axis = DVec3::new(
+        -0.5964010524060418,
+        -0.5745942977934748,
+        -0.5604883385336302,
+    );
+    let bar = Solid::cuboid(DVec3::new(0.25, 0.25, 0.875)).unwrap();
+    let bar = bar.rotate(DQuat::from_axis_angle(bar_axis, 0.2983638159142881));
+    let bar = bar
+        .unwrap()
+        .translate(DVec3::new(-0.5, -0.375, -0.5))
+        .unwrap();
+    let small = Solid::cuboid(DVec3::splat(0.125))
+        .unwrap()
+        .rotate(hair)
+        .unwrap();
+    let small = small.translate(DVec3::new(-0.4375, -0.5, -0.5)).unwrap();
+    let large = Solid::cuboid(DVec3::splat(0.625))
+        .unwrap()
+        .rotate(hair)
+        .unwrap();
+    let large = large.translate(DVec3::splat(-0.5)).unwrap();
+    let cube = Solid::cuboid(DVec3::splat(0.625)).unwrap();
+    let cube = cube.translate(DVec3::splat(-0.5)).unwrap();
+    let union = &(&bar | &small) | &large;
+    let result = &union & &cube;
+    let mesh = result.to_mesh();
+    let report = assert_clean(&mesh, "turned union ∩ cube");
+    assert_eq!(report.shells.len(), 1, "{report}");
+    // The result holds the large cube's part of the unturned one.
+    let part = (&large & &cube).volume();
+    assert!(
+        result.volume() >= part - 1e-12,
+        "{} < {part}",
+        result.volume()
+    );
+    assert!(
+        (mesh.volume() - result.volume()).abs() < 1e-10,
+        "mesh {} solid {}",
+        mesh.volume(),
+        result.volume()
+    );
+}

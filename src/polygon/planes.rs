@@ -215,8 +215,15 @@ pub(crate) fn attach_edge_planes(polygons: &mut [Polygon]) {
 /// turned 1e-10°), and every other point on that crossing line is a meet on the same line.
 pub(crate) fn attach_edge_planes_among<'a>(
     polygons: &mut [Polygon],
-    others: impl Iterator<Item = &'a Polygon>,
+    others: impl Iterator<Item = &'a Polygon> + Clone,
 ) {
+    attach_edges_by_ends(polygons, others.clone());
+    attach_edges_across_t_junctions(polygons, others);
+}
+
+/// [`attach_edge_planes`], then the planes of `others` across edges still unknown, same ends
+/// bit for bit.
+fn attach_edges_by_ends<'a>(polygons: &mut [Polygon], others: impl Iterator<Item = &'a Polygon>) {
     attach_edge_planes(polygons);
     let mut missing: KeyedHashMap<([u64; 3], [u64; 3]), (u32, u32)> = KeyedHashMap::default();
     for (i, p) in polygons.iter().enumerate() {
@@ -273,9 +280,148 @@ pub(crate) fn attach_edge_planes_among<'a>(
     }
 }
 
+/// Gives each edge still unknown the plane of a polygon, of `polygons` or `others`, whose edge
+/// runs back along it from one of its ends to a point inside it: a neighbour across the edge
+/// that was cut there, by an earlier boolean, where this polygon was not (a T-junction).
+///
+/// Without it the edge's plane is unknown, and [`Polygon::split`] takes its ends as possibly
+/// made on any plane (`made_on`): a corner of an operand turned a hair, 6.4e-15 off the other's
+/// nearly parallel face, counted as on it by the plane's rounding (2e-14 there, against the
+/// 1.1e-15 a corner merely given is allowed), and the face was cut through that corner while
+/// the other operand's face was cut on the planes' crossing line; a later cut along that edge
+/// ended 6.3e-8 from the other's (a 0.625 cube turned 1e-5° about its diagonal, united with a
+/// bar that cut its bottom face, then intersected with the cube unturned: 4 boundary edges).
+fn attach_edges_across_t_junctions<'a>(
+    polygons: &mut [Polygon],
+    others: impl Iterator<Item = &'a Polygon>,
+) {
+    // Per end of an edge still unknown: the edges (polygon, index) it ends.
+    let mut ends: KeyedHashMap<[u64; 3], smallvec::SmallVec<[(u32, u32); 2]>> =
+        KeyedHashMap::default();
+    for (i, p) in polygons.iter().enumerate() {
+        let v = &p.vertices;
+        for k in 0..v.len() {
+            if p.edge_plane(k).is_none() {
+                for end in [v[k], v[(k + 1) % v.len()]] {
+                    ends.entry(key(end)).or_default().push((i as u32, k as u32));
+                }
+            }
+        }
+    }
+    if ends.is_empty() {
+        return;
+    }
+    let mut found: Vec<(u32, u32, Plane)> = Vec::new();
+    {
+        let polygons: &[Polygon] = polygons;
+        let own = polygons.iter().enumerate().map(|(j, q)| (Some(j), q));
+        for (j, q) in own.chain(others.map(|q| (None, q))) {
+            let w = &q.vertices;
+            for m in 0..w.len() {
+                let (c, d) = (w[m], w[(m + 1) % w.len()]);
+                for (at, other, from_end) in [(c, d, true), (d, c, false)] {
+                    let Some(list) = ends.get(&key(at)) else {
+                        continue;
+                    };
+                    for &(i, k) in list {
+                        if j == Some(i as usize) {
+                            continue;
+                        }
+                        let v = &polygons[i as usize].vertices;
+                        let (a, b) = (v[k as usize], v[(k as usize + 1) % v.len()]);
+                        // The neighbour runs the edge from `b` towards `a`: its edge leaves `b`
+                        // (`from_end`) or reaches `a`, the other end inside the edge.
+                        let (shared, far) = if from_end { (b, a) } else { (a, b) };
+                        if at == shared && strictly_inside(other, shared, far) {
+                            found.push((i, k, q.plane));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    found.sort_unstable_by_key(|&(i, e, _)| (i, e));
+    found.dedup_by_key(|&mut (i, e, _)| (i, e));
+    let mut at = 0;
+    while at < found.len() {
+        let i = found[at].0 as usize;
+        let mut edges: Vec<Plane> = if polygons[i].edges().len() == polygons[i].vertices.len() {
+            polygons[i].edges().to_vec()
+        } else {
+            vec![UNKNOWN; polygons[i].vertices.len()]
+        };
+        while at < found.len() && found[at].0 as usize == i {
+            edges[found[at].1 as usize] = found[at].2;
+            at += 1;
+        }
+        polygons[i].edges = Some(edges.into());
+    }
+}
+
+/// Whether `p` lies on the segment from `from` to `to`, strictly between its ends, within the
+/// rounding of a point interpolated along it.
+fn strictly_inside(p: DVec3, from: DVec3, to: DVec3) -> bool {
+    let e = to - from;
+    let len2 = e.length_squared();
+    let t = (p - from).dot(e);
+    if !(t > 0.0 && t < len2) {
+        return false;
+    }
+    let off = (p - from - e * (t / len2)).abs().max_element();
+    let scale = from.abs().max_element().max(to.abs().max_element());
+    off <= 16.0 * f64::EPSILON * scale
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// An edge whose neighbour was cut inside it (a T-junction) takes that neighbour's plane;
+    /// one whose only candidate edge runs beside it, not along it, stays unknown.
+    #[test]
+    fn an_edge_takes_the_plane_of_a_neighbour_across_a_t_junction() {
+        let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+        // The top z = 0 of a unit square prism; its edge from (1, 0) to (1, 1) lies on x = 1.
+        let top = Polygon::new(
+            &[p(0., 0., 0.), p(1., 0., 0.), p(1., 1., 0.), p(0., 1., 0.)],
+            0,
+        );
+        // The side x = 1, cut at y = 0.3 by an earlier boolean: its piece runs back from
+        // (1, 1) to (1, 0.3) along the top's edge.
+        let side = Polygon::new(
+            &[
+                p(1., 1., 0.),
+                p(1., 0.3, 0.),
+                p(1., 0.3, -1.),
+                p(1., 1., -1.),
+            ],
+            0,
+        );
+        // The side y = 0, which shares the corner (1, 0) but runs along the top's other edge.
+        let front = Polygon::new(
+            &[p(0., 0., 0.), p(0., 0., -1.), p(1., 0., -1.), p(1., 0., 0.)],
+            0,
+        );
+        // A stray edge reaching (0, 1) from 1e-9 beside the top's edge from (0, 1) to (0, 0).
+        let stray = Polygon::new(&[p(1e-9, 0.5, 0.), p(0., 1., 0.), p(0., 0.5, -1.)], 0);
+        let mut polygons = vec![top.unwrap()];
+        let others = [side.unwrap(), front.unwrap(), stray.unwrap()];
+        attach_edge_planes_among(&mut polygons, others.iter());
+        let edges = polygons[0].edges();
+        assert_eq!(edges.len(), 4);
+        assert!(
+            edges[1].is_same_or_flipped(others[0].plane()),
+            "{:?}",
+            edges[1]
+        );
+        assert!(
+            edges[0].is_same_or_flipped(others[1].plane()),
+            "{:?}",
+            edges[0]
+        );
+        assert_eq!(edges[3].normal, DVec3::ZERO, "{:?}", edges[3]);
+        assert_eq!(edges[2].normal, DVec3::ZERO, "{:?}", edges[2]);
+    }
 
     /// Two planes crossing at 2e-10 rad whose canonical normals face opposite ways (first
     /// components ±1e-10): each judges the other's points by one line, exactly opposite ways,
