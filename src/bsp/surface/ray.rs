@@ -108,7 +108,13 @@ impl Surface<'_> {
         let inv = dir.recip();
         let eps = self.eps;
         // Boxes grown by the tolerance: a polygon the segment passes within it is a graze.
-        let meets = |b: &Aabb| b.expanded(eps).ray_span(p, inv, len).is_some();
+        // The segment's own box first, grown by twice that (room for the slab test's
+        // rounding): a box the slab test passes overlaps it, so this cheaper test drops only
+        // boxes the slab test would, and a short segment's walk drops most boxes by it.
+        let reach = Aabb::new(p.min(q), p.max(q));
+        let meets = |b: &Aabb| {
+            b.overlaps(&reach, 2.0 * eps) && b.expanded(eps).ray_span(p, inv, len).is_some()
+        };
         let mut crossings = 0u32;
         let mut grazed = false;
         let mut test = |i: u32| {

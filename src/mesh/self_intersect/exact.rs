@@ -4,6 +4,7 @@
 use glam::DVec3;
 
 /// The sign of the exact orientation of `d` against the plane through `a`, `b`, `c`.
+#[inline]
 pub(super) fn orient([a, b, c]: [DVec3; 3], d: DVec3) -> f64 {
     // Four points with one coordinate equal lie in a plane across that axis: exactly zero.
     // Coplanar points take `orient3d` through its adaptive stages (about 1,200 instructions a
