@@ -240,7 +240,10 @@ impl Ctx<'_> {
         else {
             return Ok(Solid::empty());
         };
-        super::bake_budget::check_bake_work(&program, &grid)?;
+        super::bake_budget::check_bake_work(&program, &grid, |cell| {
+            let scene = self.world.expanded(cell);
+            Lattice::over(&scene, cell)?.around(&bound.bbox.intersection(&scene))
+        })?;
         let mut mesh = march(&program, grid, Refine::Converge)?;
         super::assign_sources(&program, &mut mesh);
         let polygons = (0..mesh.triangle_count())

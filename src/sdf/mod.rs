@@ -66,7 +66,13 @@ impl Scene {
         let Some(grid) = marching_cubes::Grid::new(&self.bound.bbox, opts)? else {
             return Ok(Mesh::default());
         };
-        bake_budget::check_bake_work(&self.program, &grid)?;
+        bake_budget::check_bake_work(&self.program, &grid, |cell| {
+            let opts = BakeOptions {
+                cell: Some(cell),
+                ..opts.clone()
+            };
+            marching_cubes::Grid::new(&self.bound.bbox, &opts)
+        })?;
         let mut mesh = marching_cubes::march(
             &self.program,
             grid,
