@@ -840,7 +840,7 @@ fn assert_fork_run_passes(run: &str, kept: usize, skipped: &[&str]) {
 
 /// Every input of the round-18 fork run, replayed; the failures listed.
 #[test]
-#[ignore = "open: near-coplanar — 4 inputs of round 18's fork run fail with tiny rotations on (2 not closed, 1 mesh volume off the solid's, 1 volume out of bounds), all pass with them off"]
+#[ignore = "open: near-coplanar — 4 inputs of round 18's fork run fail with tiny rotations on (1 not closed, 2 mesh volume off the solid's, 1 volume out of bounds), all pass with them off"]
 fn the_round_18_fork_run_near_coplanar_inputs() {
     assert_fork_run_passes("round18_fork", 69, &FORK_18_PASSING);
 }
@@ -1025,19 +1025,25 @@ fn the_crossing_line_band_leaves_a_flat_shell() {
 ///
 /// edf27eb0 passes with round 17's 93aab2f0 (see [`FORK_PASSING`]).
 ///
+/// 7f2fbc81 (step 1 a closed flat shell of two triangles) since the flat fill takes away an
+/// ear of a face on a slit's rim rather than lay its reverse on it (`ears_on_rim` in
+/// `mesh/repair/cracks.rs`; minimised as
+/// `union_of_a_cube_a_slab_turned_1e_6_degrees_and_a_bar_leaves_no_flat_shell`). With it,
+/// 12bcee43 (step 3, 3 shells) and 42b00a8c (step 2, 2 shells), both not closed, not traced.
+///
 /// Also passing since the changes named at [`FORK_PASSING`]: the inputs not named above.
-const FORK_20_PASSING: [&str; 81] = [
-    "04880fb6", "060752d1", "0bebd350", "1194b103", "1d6b6b28", "1d7d9f8a", "1f854764", "20254c75",
-    "22568913", "22b67390", "24057533", "2a7dd67a", "2f1db746", "394fbf5b", "43f8dc80", "44bbfb06",
-    "45e7cb01", "4b6fae9d", "50f56fc8", "52a63048", "53fd6805", "54ad2229", "5be20e4a", "5f7ef5a2",
-    "6c1d9139", "6c2460ab", "74027838", "778ac30a", "78085500", "79dd0a25", "7d6886ee", "7eb5e225",
-    "7ee590be", "7f88a284", "8116c238", "822b0d3d", "83b87dcb", "84cb559e", "84ce80c0", "87f26b5a",
-    "8936dbd6", "8dea14d6", "91c935ab", "94d83441", "9530713d", "9679585b", "97cf8f64", "98725c3d",
-    "a30a743f", "a3a7185f", "aaf8bd05", "ad644dcd", "afdfb2bf", "b770c958", "c095e8fc", "c287ef50",
-    "c724056e", "c9724cd5", "c9f5e09e", "c9f9a708", "ce00c570", "d116749a", "d3147b45", "d642c6e2",
-    "d6f045bf", "d8a85c01", "dcbd5cd9", "de6a214f", "df3549fa", "e02e0760", "e0c0778c", "e9c633a3",
-    "ea147c0f", "eb2498a7", "ebb7181c", "edf27eb0", "ef943716", "f385f178", "fa3003dd", "fc4b5873",
-    "fe9275bb",
+const FORK_20_PASSING: [&str; 84] = [
+    "04880fb6", "060752d1", "0bebd350", "1194b103", "12bcee43", "1d6b6b28", "1d7d9f8a", "1f854764",
+    "20254c75", "22568913", "22b67390", "24057533", "2a7dd67a", "2f1db746", "394fbf5b", "42b00a8c",
+    "43f8dc80", "44bbfb06", "45e7cb01", "4b6fae9d", "50f56fc8", "52a63048", "53fd6805", "54ad2229",
+    "5be20e4a", "5f7ef5a2", "6c1d9139", "6c2460ab", "74027838", "778ac30a", "78085500", "79dd0a25",
+    "7d6886ee", "7eb5e225", "7ee590be", "7f2fbc81", "7f88a284", "8116c238", "822b0d3d", "83b87dcb",
+    "84cb559e", "84ce80c0", "87f26b5a", "8936dbd6", "8dea14d6", "91c935ab", "94d83441", "9530713d",
+    "9679585b", "97cf8f64", "98725c3d", "a30a743f", "a3a7185f", "aaf8bd05", "ad644dcd", "afdfb2bf",
+    "b770c958", "c095e8fc", "c287ef50", "c724056e", "c9724cd5", "c9f5e09e", "c9f9a708", "ce00c570",
+    "d116749a", "d3147b45", "d642c6e2", "d6f045bf", "d8a85c01", "dcbd5cd9", "de6a214f", "df3549fa",
+    "e02e0760", "e0c0778c", "e9c633a3", "ea147c0f", "eb2498a7", "ebb7181c", "edf27eb0", "ef943716",
+    "f385f178", "fa3003dd", "fc4b5873", "fe9275bb",
 ];
 
 /// The inputs of the round-20 fork run that pass now ([`FORK_20_PASSING`]).
@@ -1049,9 +1055,26 @@ fn the_round_20_fork_run_inputs_that_pass() {
 
 /// Every other input of the round-20 fork run, replayed; the failures listed.
 #[test]
-#[ignore = "open: near-coplanar — 27 inputs of round 20's fork run fail with tiny rotations on (10 not closed, 6 mesh volume off the solid's, 4 volume out of bounds, 7 needles), all pass with them off"]
+#[ignore = "open: near-coplanar — 24 inputs of round 20's fork run fail with tiny rotations on (7 not closed, 6 mesh volume off the solid's, 4 volume out of bounds, 7 needles), all pass with them off"]
 fn the_round_20_fork_run_near_coplanar_inputs() {
     assert_fork_run_passes("round20_fork", 108, &FORK_20_PASSING);
+}
+
+/// The round-20 fork run's 7f2fbc81 cut after its step 1: a 0.5 OBJ cube ∪ a 1.125 × 1.125 ×
+/// 0.125 slab turned 1e-6° about (1, 1, 1) whose top crosses the cube's along the slab's
+/// diagonal, ∪ a 0.625 × 0.25 × 1.5 bar. The slab's top is cut along its diagonal, the cube's
+/// at the computed crossing line, up to 1.3e-9 apart: a slit the flat fill closes. Its rim
+/// ran along an ear of the cube's top (a sliver of area 1.6e-10 at the bar's face), and the fill
+/// laid the ear's reverse on it: a closed shell of no volume (2 shells, not closed). The ear is
+/// now taken away instead (`ears_on_rim` in `mesh/repair/cracks.rs`).
+#[test]
+fn union_of_a_cube_a_slab_turned_1e_6_degrees_and_a_bar_leaves_no_flat_shell() {
+    replay(&[
+        0x01, 0x03, 0x03, 0x03, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x69,
+        0x00, 0x00, 0x00, 0x08, 0x08, 0xd8, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xa3, 0x00,
+        0x40, 0x03, 0x03, 0x03, 0x30, 0xc4, 0x01, 0x3b, 0xca, 0x50, 0x00, 0x00, 0xf1, 0x00, 0x00,
+        0x00, 0x00, 0x00, 0x09, 0x00,
+    ]);
 }
 
 /// From the round-20 fork run (11b5badf), failing with tiny rotations off too, so within reach

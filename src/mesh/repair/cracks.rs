@@ -107,10 +107,11 @@ pub(super) fn close_flat_cracks(
         let source = sources[owner[&edges[0]] as usize];
         // A rim of three edges bounds one triangle: other triangles at its corners hold it.
         let corners = (tris.len() == 1).then_some(&fan[..]);
-        for tri in tris {
+        let ears = ears_on_rim(&owner, &uses, triangles, &tris, &edges);
+        for (tri, ear) in tris.into_iter().zip(ears) {
             // A fill triangle that is the reverse of one already there would make the two a
             // sheet of no thickness: the loop was a flap's rim, and the flap goes instead.
-            if let Some(t) = flap(&owner, &uses, triangles, tri, corners) {
+            if let Some(t) = flap(&owner, &uses, triangles, tri, corners).or(ear) {
                 cancelled.push(t);
             } else {
                 sources.push(source);
@@ -176,6 +177,47 @@ fn flap(
             .any(|&v| fan[v as usize + 1] - fan[v as usize] > 1)
     };
     (by_edge || corners.is_some_and(at_corner)).then_some(t)
+}
+
+/// For each of a loop's fill triangles `tris`, the triangle already there that runs exactly
+/// against it and is an ear of the face beside the loop, if any: two of the ear's edges or one
+/// lie on the loop's `rim` and each other edge is paired (the face holds it there). Laid on
+/// the ear, the fill triangle and the ear made a closed shell of no volume, kept as the
+/// fill's (see [`super::thin`]); the ear is taken away instead, which leaves the same edges to
+/// pair, as the loop's other fill triangles close the face's rim. None where every fill
+/// triangle would so go: the loop is then a lone face's rim (see [`flap`]), not a slit beside
+/// a face.
+///
+/// A slit where a cuboid's top and a slab's turned 1e-6° cross, cut along the slab's
+/// diagonal on one side and at the computed crossing line on the other (up to 1.3e-9 apart),
+/// ended at a corner of the cube's top whose triangulation held a sliver ear (area 1.6e-10)
+/// on the slit's rim: the fill's triangle across that end was the ear's reverse.
+fn ears_on_rim(
+    owner: &FxHashMap<(u32, u32), u32>,
+    uses: &FxHashMap<(u32, u32), i32>,
+    triangles: &[[u32; 3]],
+    tris: &[[u32; 3]],
+    rim: &[(u32, u32)],
+) -> Vec<Option<u32>> {
+    let ear = |tri: [u32; 3]| {
+        let reversed = [tri[0], tri[2], tri[1]];
+        let turns = |other: [u32; 3]| {
+            (0..3).any(|k| other == [reversed[k], reversed[(k + 1) % 3], reversed[(k + 2) % 3]])
+        };
+        let t = (0..3)
+            .filter_map(|k| owner.get(&(tri[(k + 1) % 3], tri[k])).copied())
+            .find(|&t| turns(triangles[t as usize]))?;
+        let held = (0..3).all(|k| {
+            let (a, b) = (reversed[k], reversed[(k + 1) % 3]);
+            rim.contains(&(a, b)) || uses.get(&(b, a)).copied().unwrap_or(0) >= 1
+        });
+        held.then_some(t)
+    };
+    let ears: Vec<Option<u32>> = tris.iter().map(|&tri| ear(tri)).collect();
+    if ears.iter().all(Option::is_some) {
+        return vec![None; tris.len()];
+    }
+    ears
 }
 
 /// The triangles already there that make up a flap with `rim` (a loop of unpaired half-edges)
