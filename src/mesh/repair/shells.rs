@@ -43,6 +43,81 @@ pub(super) fn split_into_shells(
     split_around_discs(positions, (triangles, sources), &disc)
 }
 
+/// [`cancel_reversed_pairs`] for a flat fin whose two sides cover one quad along different
+/// diagonals: triangles `a b c` and `a c d` dropped with `a d b` and `d c b`, where `d` lies
+/// within the weld (`shortest` over [`FIN_SHORTEST_WELDS`]) of the plane of `a b c`. The two
+/// sides of one welded sheet are triangulated region by region, and a region that grew on one
+/// side took the other diagonal: a union of a box turned 1e-9° with an unturned box on its face
+/// left a slot 6.6e-12 wide, laid flat by the weld; the next union triangulated its sides apart,
+/// and the repair split the slot's ends into two shells with 6 boundary edges. `keyed` is the
+/// triangles looked at (rotated to their least vertex, sorted), `dropped` those already taken.
+fn cancel_reversed_quads(
+    (positions, shortest): (&[DVec3], f64),
+    triangles: &[[u32; 3]],
+    keyed: &[([u32; 3], u32)],
+    dropped: &mut [bool],
+) -> bool {
+    let find = |t: [u32; 3], dropped: &[bool]| {
+        let k = (0..3).min_by_key(|&k| t[k]).expect("three corners");
+        let key = [t[k], t[(k + 1) % 3], t[(k + 2) % 3]];
+        let at = keyed.partition_point(|&(k, _)| k < key);
+        (at..keyed.len())
+            .take_while(|&m| keyed[m].0 == key)
+            .map(|m| keyed[m].1)
+            .find(|&i| !dropped[i as usize])
+    };
+    let flat = shortest / FIN_SHORTEST_WELDS;
+    // The triangles looked at by each directed edge.
+    let mut by_edge: std::collections::HashMap<(u32, u32), Vec<u32>> = Default::default();
+    for &(_, i) in keyed {
+        let t = triangles[i as usize];
+        for k in 0..3 {
+            by_edge.entry((t[k], t[(k + 1) % 3])).or_default().push(i);
+        }
+    }
+    let mut any = false;
+    for &(_, i) in keyed {
+        if dropped[i as usize] {
+            continue;
+        }
+        let t = triangles[i as usize];
+        for k in 0..3 {
+            // `t` is `a b c` with `c → a` its edge k + 2; the quad's other half is `a c d`.
+            let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+            let Some(j) = by_edge.get(&(a, c)).and_then(|list| {
+                list.iter().copied().find(|&j| {
+                    let u = triangles[j as usize];
+                    j != i && !dropped[j as usize] && !u.contains(&b)
+                })
+            }) else {
+                continue;
+            };
+            let u = triangles[j as usize];
+            let m = (0..3).find(|&m| u[m] == a).expect("a corner of the pair");
+            let d = u[(m + 2) % 3];
+            let [pa, pb, pc, pd] = [a, b, c, d].map(|v| positions[v as usize]);
+            let n = (pb - pa).cross(pc - pa);
+            if n.length() == 0.0 || ((pd - pa).dot(n) / n.length()).abs() > flat {
+                continue;
+            }
+            let Some(x) = find([a, d, b], dropped) else {
+                continue;
+            };
+            dropped[x as usize] = true;
+            let Some(y) = find([d, c, b], dropped) else {
+                dropped[x as usize] = false;
+                continue;
+            };
+            for z in [i, j, x, y] {
+                dropped[z as usize] = true;
+            }
+            any = true;
+            break;
+        }
+    }
+    any
+}
+
 /// How many welds long a fin's every edge must be for [`cancel_reversed_pairs`] to drop it:
 /// the reach of the first wider weld the repair retries with.
 ///
@@ -115,6 +190,7 @@ fn cancel_reversed_pairs(
             any = true;
         }
     }
+    any |= cancel_reversed_quads((positions, shortest), triangles, &keyed, &mut dropped);
     if !any {
         return false;
     }
