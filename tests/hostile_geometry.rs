@@ -72,6 +72,11 @@ fn a_sphere_less_itself_turned_a_hair_is_closed_with_the_slivers_volume() {
         bspcsg_to(&["difference".as_ref(), a.as_os_str(), b.as_os_str()], &out).ok();
         let report = read_mesh(&out).unwrap().report();
         assert!(report.is_closed_manifold(), "{segments}: {report}");
+        // The film's needles are removed: a guard that sent its thin shells back to removing
+        // only the kernel's own needles left 8,358 of them at 128×64 (65,190 → 80,984 triangles).
+        // Open: 256×128 keeps 3 (of 262,008 triangles).
+        let needles_left = if segments < 256 { 0 } else { 3 };
+        assert!(report.needles <= needles_left, "{segments}: {report}");
         // Off by about the tolerance times the slivers' area (6e-11 of 3.6e-7 at 32×16).
         assert!(
             (report.volume - want).abs() < 1e-3 * want,

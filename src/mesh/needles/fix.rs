@@ -5,15 +5,15 @@ use super::work::Work;
 use super::{Op, Plan};
 
 impl Work {
-    /// The operation on needle `t` that, of those that apply, moves the surface least, and how
-    /// far it moves it (its plan's `dev`), or `None` when none applies.
+    /// The operation on needle `t` that, of those that apply, moves the surface least, or
+    /// `None` when none applies.
     ///
     /// First within twice the needle's own thickness (or the boolean's tolerance); where
     /// nothing applies that close, within the shell's bound ([`super::SPECK_MOVE`] × d). A
     /// needle where near-coplanar faces meet is often a spike whose short edge is far longer
     /// than its thickness (6·10⁻⁹ beside a height of 10⁻¹²): collapsing that edge keeps the
     /// volume and moves the surface by about its length, far inside the bound.
-    pub(super) fn plan(&self, t: u32) -> Option<(f64, Op)> {
+    pub(super) fn plan(&self, t: u32) -> Option<Op> {
         let tri = self.tris[t as usize];
         let shell = self.shell[tri[0] as usize] as usize;
         let bound = self.max_move[shell];
@@ -35,7 +35,7 @@ impl Work {
     /// edge (2·10⁻¹³), and was left; beside it, a speck whose shortest edge's stretch moves a
     /// corner out of a large triangle's plane by 5.7·10⁻⁶ (the bound 1.8·10⁻⁶) stretches
     /// another edge instead, along that plane (1.5·10⁻⁶).
-    fn stretch_any(&self, t: u32, bound: f64) -> Option<(f64, Op)> {
+    fn stretch_any(&self, t: u32, bound: f64) -> Option<Op> {
         let tri = self.tris[t as usize];
         (0..3)
             .flat_map(|k| {
@@ -45,7 +45,7 @@ impl Work {
             .flatten()
             .filter(|plan| plan.dev <= bound)
             .min_by(|a, b| a.swept.total_cmp(&b.swept))
-            .map(|plan| (plan.dev, plan.op))
+            .map(|plan| plan.op)
     }
 
     /// Applies `op` (planned by [`Work::plan`]); the triangles it changed.
@@ -72,7 +72,7 @@ impl Work {
     /// `bound` (see [`Work::plan_widen`]): where nothing else applies. Edges are tried longest
     /// first, so on a flat fan (every edge moves the surface by 0) the apex moves off the long
     /// edge, by the least distance, not along the plane off a short one.
-    fn widen(&self, t: u32, bound: f64) -> Option<(f64, Op)> {
+    fn widen(&self, t: u32, bound: f64) -> Option<Op> {
         let c = self.corners(self.tris[t as usize]);
         let mut edges = [0, 1, 2];
         edges.sort_by(|&j, &k| {
@@ -84,7 +84,7 @@ impl Work {
             .filter_map(|k| self.plan_widen(t, k))
             .filter(|plan| plan.dev <= bound)
             .min_by(|p, q| p.dev.total_cmp(&q.dev))
-            .map(|plan| (plan.dev, plan.op))
+            .map(|plan| plan.op)
     }
 
     /// Needle `t`'s thickness: its height over its longest edge.
@@ -98,7 +98,7 @@ impl Work {
 
     /// The operation on needle `t` that moves the surface no farther than `limit`, of those
     /// that apply (see [`Work::fix`]).
-    fn choose(&self, t: u32, limit: f64) -> Option<(f64, Op)> {
+    fn choose(&self, t: u32, limit: f64) -> Option<Op> {
         let tri = self.tris[t as usize];
         let c = self.corners(tri);
         let len = [0, 1, 2].map(|k| c[k].distance(c[(k + 1) % 3]));
@@ -112,14 +112,14 @@ impl Work {
         // Of the operations that move the surface no farther than `limit`, the one that sweeps
         // the least volume: moving a corner of a large triangle off its plane sweeps much even
         // when the distance is small.
-        let mut flips: Option<(f64, f64, Op)> = None;
-        let mut collapses: Option<(f64, f64, Op)> = None;
-        let consider = |best: &mut Option<(f64, f64, Op)>, candidate: Option<Plan>| {
+        let mut flips: Option<(f64, Op)> = None;
+        let mut collapses: Option<(f64, Op)> = None;
+        let consider = |best: &mut Option<(f64, Op)>, candidate: Option<Plan>| {
             if let Some(Plan { dev, swept, op }) = candidate
                 && dev <= limit
-                && best.as_ref().is_none_or(|(v, _, _)| swept < *v)
+                && best.as_ref().is_none_or(|(v, _)| swept < *v)
             {
-                *best = Some((swept, dev, op));
+                *best = Some((swept, op));
             }
         };
         consider(&mut flips, self.plan_flip(t, longest));
@@ -130,7 +130,7 @@ impl Work {
         }
         // Where no edge collapses and no flip applies (a speck between flat slivers, or on a
         // vertex of valence three), the whole triangle may merge into one vertex.
-        let mut merges: Option<(f64, f64, Op)> = None;
+        let mut merges: Option<(f64, Op)> = None;
         if collapses.is_none() && flips.is_none() {
             consider(&mut merges, self.plan_merge(t));
             // Where the speck is one of a patch of them (every edge below the speck length)
@@ -142,7 +142,7 @@ impl Work {
             }
         }
         let best = if short_edge {
-            let mut stretches: Option<(f64, f64, Op)> = None;
+            let mut stretches: Option<(f64, Op)> = None;
             if collapses.is_none() && flips.is_none() && merges.is_none() {
                 let (p, q) = (tri[shortest], tri[(shortest + 1) % 3]);
                 consider(&mut stretches, self.plan_stretch(t, p, q));
@@ -150,15 +150,8 @@ impl Work {
             }
             collapses.or(flips).or(merges).or(stretches)
         } else {
-            // A cap is flipped, unless a collapse sweeps less volume than the flip: a thin
-            // needle's flip sweeps the tetrahedron on its long edge, the needle's area times
-            // the reach of the neighbour across it, however little it moves the surface.
-            match (flips, collapses) {
-                (Some(f), Some(c)) if c.0 < f.0 => Some(c),
-                (f, c) => f.or(c),
-            }
-            .or(merges)
+            flips.or(collapses).or(merges)
         };
-        best.map(|(_, dev, op)| (dev, op))
+        best.map(|(_, op)| op)
     }
 }

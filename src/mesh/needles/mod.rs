@@ -12,9 +12,7 @@
 //! * **Flip** the needle's longest edge `ab` (apex `v`, neighbour `bac`) to `vc`. The new
 //!   triangles lie in the tetrahedron `abcv`, whose every point is within the apex height of
 //!   `abc`: the surface moves by at most that height. Taken when `v` is far from both ends of
-//!   `ab` (a *cap*), unless a collapse sweeps less volume: the tetrahedron's volume is the
-//!   needle's area times the reach of `c`, however small the height (a thin needle beside a
-//!   triangle 10⁴ wide swept 4,638, 0.1 % of an I-beam scene, `bsp_15`).
+//!   `ab` (a *cap*).
 //! * **Collapse** the needle's shortest edge `pq`, moving `p` onto `q` and deleting the two
 //!   triangles beside it; where that would change the volume, `q` moves off its place along
 //!   the fan's normal by what puts it back (a collapse keeps the volume). The surface moves by
@@ -176,9 +174,7 @@ pub(crate) fn remove_needles(
     // smaller), it runs again from the start removing in that shell only the needles the kernel must
     // ([`crate::geom::is_needle_to_remove`]: thin, weld-sized or specks of its thickness, not a
     // thin shell's own well-shaped faces); beyond it again, that shell keeps its needles, not
-    // its shape changed. A shell whose surface moved beyond [`NEEDLE_SHAPE_MOVE`] of its
-    // thickness and beyond one operation's bound (a collapse keeps the volume, not the
-    // shape) runs again so too. Operations never reach across shells (each changes the triangles
+    // its shape changed. Operations never reach across shells (each changes the triangles
     // around one needle's corners), so the other shells' operations are the same again. (Until
     // round 23 one shell over the bound undid every fix of the mesh.)
     let tolerance = Tolerance::RELATIVE * bbox.diagonal().min(scale);
@@ -189,14 +185,10 @@ pub(crate) fn remove_needles(
     // Each shell's volume and area, measured only once some shell's change needs them.
     let mut measures: Option<(Vec<f64>, Vec<f64>)> = None;
     for _ in 0..NEEDLE_RERUNS {
-        let (change, seen_area, moved) = run(&mut work, queue.clone(), &frozen, bbox.center());
-        // Within what the touched triangles' area explains, a shell need not be measured; nor
-        // where its surface moved within one operation's bound (see [`NEEDLE_SHAPE_MOVE`]).
+        let (change, seen_area) = run(&mut work, queue.clone(), &frozen, bbox.center());
+        // Within what the touched triangles' area explains, a shell need not be measured.
         let near = |s: usize| change[s].abs() > swept * seen_area[s];
-        let far: Vec<bool> = (0..shells)
-            .map(|s| !strict[s] && moved[s] > work.max_move[s])
-            .collect();
-        if !(0..=shells).any(near) && !far.contains(&true) {
+        if !(0..=shells).any(near) {
             return work.finish(mesh);
         }
         let (volume, area) = measures
@@ -220,11 +212,6 @@ pub(crate) fn remove_needles(
                 if strict[s] {
                     frozen[s] = true;
                 }
-                strict[s] = true;
-                over = true;
-            } else if far[s] && moved[s] > NEEDLE_SHAPE_MOVE * 2.0 * volume[s].abs() / area[s] {
-                // The shape's own faces went (see [`NEEDLE_SHAPE_MOVE`]): only the needles the
-                // kernel must remove, however far that moves it.
                 strict[s] = true;
                 over = true;
             }
@@ -253,17 +240,13 @@ fn run(
     mut queue: Vec<u32>,
     frozen: &[bool],
     reference: DVec3,
-) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+) -> (Vec<f64>, Vec<f64>) {
     let shell_of = |work: &Work, t: u32| work.first_shell[work.tris[t as usize][0] as usize];
     queue.retain(|&t| !frozen[shell_of(work, t) as usize]);
     // Per shell, and last the tetrahedra deleted whole.
     let mut change = vec![0.0; frozen.len() + 1];
     let mut seen_area = vec![0.0; frozen.len() + 1];
     let mut seen = vec![false; work.tris.len()];
-    // Per vertex, how far the surface around it may have moved (the operations' `dev`s along
-    // a chain of them); per shell, the most of that.
-    let mut drift = vec![0.0; work.positions.len()];
-    let mut moved = vec![0.0; frozen.len() + 1];
     // Each operation removes a needle or makes one's smallest area larger; the budget only
     // guards against cycling between equally bad choices.
     let mut budget = 16 * queue.len() + 64;
@@ -275,10 +258,7 @@ fn run(
         if !work.alive[t as usize] || !work.is_needle(t) {
             continue;
         }
-        let (dev, op) = match work.plan(t) {
-            Some((dev, op)) => (dev, Some(op)),
-            None => (0.0, None),
-        };
+        let op = work.plan(t);
         let shell = if op.is_some() {
             shell_of(work, t) as usize
         } else {
@@ -295,14 +275,6 @@ fn run(
             }
         }
         let before = work.star_volume(&star, reference);
-        // The star's surface lies within its corners' drift of the original; the operation moves
-        // it by `dev` more.
-        let reach = dev
-            + star
-                .iter()
-                .flat_map(|&u| work.tris[u as usize])
-                .map(|v| drift[v as usize])
-                .fold(0.0, f64::max);
         for &u in &star {
             if !std::mem::replace(&mut seen[u as usize], true) {
                 seen_area[shell] += area(work.corners(work.tris[u as usize]));
@@ -313,15 +285,6 @@ fn run(
             work.drop_tetrahedron(t);
         }
         change[shell] += work.star_volume(&star, reference) - before;
-        if let Some(touched) = &fixed {
-            drift.resize(work.positions.len(), 0.0);
-            for &u in touched {
-                for v in work.tris[u as usize] {
-                    drift[v as usize] = f64::max(drift[v as usize], reach);
-                }
-            }
-            moved[shell] = f64::max(moved[shell], reach);
-        }
         if let Some(touched) = fixed {
             // An operation changes the neighbours of every corner of the triangles it touched,
             // so the link condition of needles with a corner there: those are tried again. A
@@ -340,35 +303,19 @@ fn run(
             queue.extend(again);
         }
     }
-    (change, seen_area, moved)
+    (change, seen_area)
 }
 
 /// The most the needle pass may change a shell's volume: [`NEEDLE_VOLUME_CHANGE`] of its own
 /// volume or the mesh's (the smaller), plus [`NEEDLE_SWEPT_TOLERANCES`] plane tolerances (at the
 /// pass's scale) times the shell's area. Flips change it too: a thin needle's flip sweeps the
 /// tetrahedron on its long edge, up to its area times the reach of the neighbour across that
-/// edge (a tenth of a percent of an I-beam scene's volume, `bsp_15`, until a flip yielded to a
-/// collapse sweeping less).
+/// edge (a tenth of a percent of an I-beam scene's volume, `bsp_15`).
 /// Collapses and merges keep the volume, but stretching the tip of a wedge changes it: by
 /// 1.9·10⁻⁴ of a sliver of boxes (7.9·10⁻¹⁰), 2.7·10⁻³ of sphere − itself turned 10⁻⁶° (a
 /// crescent of 1.8·10⁻⁹), 0.15 of cube − itself turned 3·10⁻⁹° (wedges of 4.1·10⁻¹¹, a change
 /// of 1.2 tolerances times the area). The beams' folding moves changed it by 1.6 times.
 const NEEDLE_VOLUME_CHANGE: f64 = 1e-2;
-
-/// The most the needle pass may move a shell's surface, as a fraction of its thickness `2V/A`
-/// (the slab of [`crate::geom::is_needle_to_remove`]), where it also moved it beyond one
-/// operation's bound ([`SPECK_MOVE`] × d), before the shell runs again removing only the
-/// needles the kernel must (that run is not held to it). Measured as the operations' `dev`s
-/// (each moved corner's distance from the old triangles' planes and back, a needle's own plane
-/// not counted) added along chains of operations that share a vertex. A collapse keeps the
-/// volume however far it moves the shape: on the I-beam scenes (666,660 long, 0.58 thick by
-/// `2V/A`, 0.15 for `bsp_13`), whose profile faces are needles by area, runs that took those
-/// faces measured 6.1 … 30 thicknesses (`bsp_16` 7.2, `bsp_19` 7.5, both within the volume
-/// bound; `bsp_13` 496) and 2.3 … 3.2 times `SPECK_MOVE · d`; runs removing only the kernel's
-/// needles 10⁻⁴ … 0.21 thicknesses (`bsp_13` 0.93). The thin wedges of the round-18 and
-/// round-20 fork inputs (2V/A 10⁻¹⁰ … 2·10⁻⁸) measure 4 … 2,100 thicknesses but at most
-/// 0.25 × `SPECK_MOVE · d`: their needles go, as the booleans' check demands.
-const NEEDLE_SHAPE_MOVE: f64 = 1.0;
 
 /// See [`NEEDLE_VOLUME_CHANGE`]: a wider weld may sweep as much (`repair::SWEPT_WELDS` times
 /// the first weld's reach of 8 tolerances).
