@@ -7,7 +7,7 @@ use std::collections::HashSet;
 
 use bspcsg::glam::DVec3;
 use bspcsg::{Mesh, Solid};
-use common::{assert_closed_manifold, obj_box_mesh};
+use common::{assert_closed_manifold, obj_box_mesh, shells_and_genus};
 
 /// `count` cells of an `n`³ grid drawn by a fixed linear congruential generator (repeats allowed).
 fn random_cells(count: usize, n: u64, seed: u64) -> Vec<[i64; 3]> {
@@ -137,6 +137,41 @@ fn a_thousand_grid_boxes_union_exactly() {
     }
     let dense = random_cells(1000, 10, 3);
     let (_, _) = assert_exact_union(&dense, false, "1000 boxes in 10³");
+}
+
+/// Two bars of two boxes, (0..2, 0, 0) and (0..2, 1, 1), touching along the edge y = z = 1
+/// from x = 0 to 2, between two 2×2 walls at x = −1 and x = 2. The library's union (one
+/// source) and the command line's (a source per input) must pair the contact alike. With one
+/// source the contact is one edge 0 → 2 (its middle vertex dropped with the merged faces);
+/// pairing across the solid leaves both sheets on its two end vertices, which the walls close
+/// into one fan each, so the pairing flips to across the empty wedges (genus 0). With a source
+/// per box the vertex at x = 1 stays and pinches nothing, and the contact stayed split (genus 1)
+/// until a straight run of edges closed at both ends was flipped like one edge. In
+/// `random_cells(1000, 12, 1)` the same contact (x = 7..9 along y = 7, z = 1) gave the command
+/// line's union genus 24 against the library's 23.
+#[test]
+fn a_contact_between_walls_pairs_alike_with_or_without_sources() {
+    let wall = |x: i64| [[x, 0, 0], [x, 1, 0], [x, 0, 1], [x, 1, 1]];
+    let mut cells: Vec<[i64; 3]> = [wall(-1), wall(2)].concat();
+    cells.extend([[0, 0, 0], [1, 0, 0], [0, 1, 1], [1, 1, 1]]);
+    for (cells, what) in [
+        (cells, "walls and bars"),
+        (random_cells(1000, 12, 1), "1000 boxes"),
+    ] {
+        let one = Solid::union_all(unit_boxes(&cells, false)).to_mesh();
+        let per_box = Solid::union_all(
+            unit_boxes(&cells, false)
+                .into_iter()
+                .enumerate()
+                .map(|(i, s)| s.with_source(i as u32)),
+        )
+        .to_mesh();
+        assert_eq!(
+            shells_and_genus(&one, what),
+            shells_and_genus(&per_box, what),
+            "{what}: one source against a source per box"
+        );
+    }
 }
 
 /// A 32×16 and a 64×32 sphere minus the same sphere turned by 1e-4° about a skew axis: every

@@ -27,6 +27,7 @@ mod edges;
 mod grid;
 mod indexed;
 mod regions;
+mod runs;
 mod shells;
 mod thin;
 mod tjunction;

@@ -4,6 +4,7 @@ use glam::DVec3;
 
 use super::discs::one_disc;
 use super::edges::{sort_by_edge, undirected};
+use super::runs::{closed_runs, runs_of};
 use crate::disjoint_sets::DisjointSets;
 use crate::mesh::Mesh;
 
@@ -21,7 +22,10 @@ use crate::mesh::Mesh;
 /// the same two vertices. For each connected chain of such edges the other pairing (across the
 /// empty wedges, as if the solid's pieces overlapped by a hair) is tried, and kept when it
 /// leaves fewer edges whose pairs share their vertices: the chain's vertices then split, every
-/// edge of the output is used by exactly two triangles.
+/// edge of the output is used by exactly two triangles. A straight run of such edges whose
+/// far ends both close (the contact's inner vertices kept, as between polygons of different
+/// sources, so no edge of it pinches) is flipped alike, kept when it leaves fewer such runs:
+/// the route (one source or one per input) does not change how a contact pairs.
 ///
 /// A vertex whose triangles already form one closed disc (nearly all of them: see [`one_disc`])
 /// keeps its one vertex, and the half-edges between two such vertices need no twin found: only
@@ -259,12 +263,14 @@ pub(super) fn split_around_discs(
     let mut corner_vertex = fan_vertices(&triangles, &twin, disc);
     if !crowded.is_empty() {
         let pinched = pinched_edges(&crowded, &corner_vertex);
-        if pinched.iter().any(|&p| p > 0) {
+        let runs = runs_of(&crowded, &triangles, &positions);
+        let closed = closed_runs(&crowded, &triangles, &runs, &corner_vertex);
+        if pinched.iter().chain(&closed).any(|&p| p > 0) {
             let chains = chains_of(&crowded, &triangles);
             let bad_chain: Vec<bool> = {
                 let mut bad = vec![false; crowded.len()];
-                for (g, &p) in pinched.iter().enumerate() {
-                    if p > 0 {
+                for (g, (&p, &c)) in pinched.iter().zip(&closed).enumerate() {
+                    if p > 0 || c > 0 {
                         bad[chains[g]] = true;
                     }
                 }
@@ -286,11 +292,19 @@ pub(super) fn split_around_discs(
             }
             let flipped_vertex = fan_vertices(&triangles, &flipped_twin, disc);
             let flipped_pinched = pinched_edges(&crowded, &flipped_vertex);
-            // Per chain: how many pinched edges each pairing leaves.
-            let mut score = vec![(0usize, 0usize); crowded.len()];
+            let flipped_closed = closed_runs(&crowded, &triangles, &runs, &flipped_vertex);
+            // Per chain: how many pinched edges each pairing leaves, then how many straight
+            // runs closed at both ends. A run of several edges (its straight-through vertices
+            // kept, as between polygons of different sources) pinches no edge where the one
+            // edge of the merged polygons pinches, but closes the same ends: pair them alike.
+            let mut score = vec![((0usize, 0usize), (0usize, 0usize)); crowded.len()];
             for g in 0..crowded.len() {
-                score[chains[g]].0 += pinched[g];
-                score[chains[g]].1 += flipped_pinched[g];
+                let c = chains[g];
+                score[c].0 = (score[c].0.0 + pinched[g], score[c].0.1 + closed[g]);
+                score[c].1 = (
+                    score[c].1.0 + flipped_pinched[g],
+                    score[c].1.1 + flipped_closed[g],
+                );
             }
             let keep_flip: Vec<bool> = (0..crowded.len())
                 .map(|c| bad_chain[c] && score[c].1 < score[c].0)
