@@ -167,3 +167,46 @@ pub(super) fn cancel_reversed_pairs(
     });
     true
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A flat unit quad `0 1 2 3` split along 0–2 on one side and along 1–3 the other way
+    /// round on the other, with triangle `0 1 4` off the sheet; the fourth corner lifted by
+    /// `lift` along z. Returns the triangles kept and `filled_from` after the drop.
+    fn fin_after_drop(lift: f64) -> (Vec<[u32; 3]>, usize) {
+        let weld = 1e-6;
+        let positions = [
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.0, lift),
+            DVec3::new(0.5, -0.5, 1.0),
+        ];
+        let mut triangles = vec![[0, 1, 2], [0, 2, 3], [0, 3, 1], [3, 2, 1], [0, 1, 4]];
+        let mut sources = vec![0, 0, 1, 1, 2];
+        let mut filled_from = triangles.len();
+        let disc = [false; 5];
+        let fins = (&positions[..], FIN_SHORTEST_WELDS * weld);
+        cancel_reversed_pairs(fins, &mut triangles, &mut sources, &disc, &mut filled_from);
+        assert_eq!(sources.len(), triangles.len());
+        (triangles, filled_from)
+    }
+
+    #[test]
+    fn a_flat_quad_and_its_reverse_along_the_other_diagonal_are_dropped() {
+        let (triangles, filled_from) = fin_after_drop(0.0);
+        assert_eq!(triangles, vec![[0, 1, 4]]);
+        assert_eq!(filled_from, 1);
+        // Within the weld of the plane it is still one sheet.
+        assert_eq!(fin_after_drop(0.5e-6).0, vec![[0, 1, 4]]);
+    }
+
+    #[test]
+    fn a_quad_folded_two_welds_off_its_plane_is_kept() {
+        let (triangles, filled_from) = fin_after_drop(2e-6);
+        assert_eq!(triangles.len(), 5);
+        assert_eq!(filled_from, 5);
+    }
+}
