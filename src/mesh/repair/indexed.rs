@@ -130,8 +130,7 @@ pub(super) fn repair(
     // The rim's and the cut polygons' repair, and beside it the core's fans (which read only
     // the welded positions and write the core's own vertices): the two ran one after the other
     // on one thread, the fans about a twentieth of this pass (5 M instructions of 90 M on
-    // rocker-arm). Joined in that order, whatever the
-    // threads.
+    // rocker-arm). Joined in that order, whatever the threads.
     let welded = positions.len();
     let ((mut triangles, mut sources), core) = rayon::join(
         || {
