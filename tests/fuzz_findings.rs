@@ -1048,6 +1048,10 @@ fn the_round_20_fork_run_inputs_that_pass() {
 }
 
 /// Every other input of the round-20 fork run, replayed; the failures listed.
+///
+/// Traced: 25a6e85f (step 0, the solid 1.83e-7 below its mesh, which is right) is minimised in
+/// `near_coplanar_corners.rs`: a crossing line of faces at 1.5e-11 rad ends within its rounding
+/// at another corner, one operand ends its cut there and the other 1.56e-5 beside it.
 #[test]
 #[ignore = "open: near-coplanar — 27 inputs of round 20's fork run fail with tiny rotations on (10 not closed, 6 mesh volume off the solid's, 4 volume out of bounds, 7 needles), all pass with them off"]
 fn the_round_20_fork_run_near_coplanar_inputs() {
