@@ -24,6 +24,7 @@ mod buckets;
 mod cracks;
 mod discs;
 mod edges;
+mod fins;
 mod grid;
 mod indexed;
 mod regions;

@@ -4,6 +4,7 @@ use glam::DVec3;
 
 use super::discs::one_disc;
 use super::edges::{sort_by_edge, undirected};
+use super::fins::{FIN_SHORTEST_WELDS, cancel_reversed_pairs};
 use super::runs::{closed_runs, runs_of};
 use crate::disjoint_sets::DisjointSets;
 use crate::mesh::Mesh;
@@ -45,95 +46,6 @@ pub(super) fn split_into_shells(
         disc = one_disc(&triangles, positions.len());
     }
     split_around_discs(positions, (triangles, sources), &disc)
-}
-
-/// How many welds long a fin's every edge must be for [`cancel_reversed_pairs`] to drop it:
-/// the reach of the first wider weld the repair retries with.
-///
-/// A fin is a sliver laid flat along a crossing (its edges 10⁻⁷ … 0.6 long in the cases it
-/// closes). A triangle and its reverse with an edge shorter than that are rather one point
-/// computed several ways a little beyond the weld (where three spheres' poles meet, turned
-/// 1e-9° and 1e-3° apart: four points within 2·10⁻¹¹ against a weld of 10⁻¹¹). Dropped, the
-/// pass closed with the copies of the point apart, and the needles between them took 1.6·10⁻⁹
-/// of the volume in vertex moves; kept, the pass leaves cracks there and the wider weld makes
-/// them one point, closed with the volume right.
-const FIN_SHORTEST_WELDS: f64 = 10.0;
-
-/// Drops each triangle together with one that holds the same three vertices the other way
-/// round: a sheet with no inside, two faces a weld apart that the weld laid onto each other
-/// (a sliver 10⁻¹² thick between faces crossing at 10⁻¹¹ rad, left by the boolean as a fin on
-/// the solid's edge). Every edge of the pair is used once each way by it, so what is left
-/// pairs as before; the pair bounds no volume. Kept, the fin's sides pair by the order of
-/// their half-edges, their angles being equal: in the case traced they paired with each other,
-/// and the vertices where the fin meets the solid split into two shells with boundary edges.
-/// Only triangles before `filled_from` (where the flat fill's, which close a crack loop by the
-/// reverse of what it bounds, start; moved down by those dropped) and at a vertex that is not a
-/// disc (a pair's own corners never are, where it meets anything else) are looked at, and only
-/// those whose every edge is longer than `shortest` (see [`FIN_SHORTEST_WELDS`]). True if any
-/// was dropped.
-fn cancel_reversed_pairs(
-    (positions, shortest): (&[DVec3], f64),
-    triangles: &mut Vec<[u32; 3]>,
-    sources: &mut Vec<u32>,
-    disc: &[bool],
-    filled_from: &mut usize,
-) -> bool {
-    // Each triangle rotated to start at its least vertex: a triangle and its reverse differ
-    // only in the order of the last two.
-    let rotated = |t: [u32; 3]| {
-        let k = (0..3).min_by_key(|&k| t[k]).expect("three corners");
-        [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
-    };
-    let mut keyed: Vec<([u32; 3], u32)> = triangles
-        .iter()
-        .enumerate()
-        .take(*filled_from)
-        .filter(|(_, t)| {
-            t.iter().any(|&v| !disc[v as usize]) && t[0] != t[1] && t[1] != t[2] && t[0] != t[2]
-        })
-        .filter(|(_, t)| {
-            let [a, b, c] = t.map(|v| positions[v as usize]);
-            a.distance(b).min(b.distance(c)).min(c.distance(a)) > shortest
-        })
-        .map(|(i, &t)| (rotated(t), i as u32))
-        .collect();
-    if keyed.len() < 2 {
-        return false;
-    }
-    keyed.sort_unstable();
-    let mut dropped = vec![false; triangles.len()];
-    let mut any = false;
-    for j in 0..keyed.len() {
-        let (key, i) = keyed[j];
-        if dropped[i as usize] || key[1] > key[2] {
-            continue;
-        }
-        let reverse = [key[0], key[2], key[1]];
-        let at = keyed.partition_point(|&(k, _)| k < reverse);
-        if let Some(m) = (at..keyed.len())
-            .take_while(|&m| keyed[m].0 == reverse)
-            .find(|&m| !dropped[keyed[m].1 as usize])
-        {
-            dropped[i as usize] = true;
-            dropped[keyed[m].1 as usize] = true;
-            any = true;
-        }
-    }
-    if !any {
-        return false;
-    }
-    *filled_from -= dropped.iter().filter(|&&d| d).count();
-    let mut k = 0;
-    triangles.retain(|_| {
-        k += 1;
-        !dropped[k - 1]
-    });
-    let mut k = 0;
-    sources.retain(|_| {
-        k += 1;
-        !dropped[k - 1]
-    });
-    true
 }
 
 /// [`split_into_shells`] with `disc` from [`one_disc`]: around a disc vertex every edge is used
