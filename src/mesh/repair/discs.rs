@@ -1,6 +1,8 @@
 //! Vertices whose triangles form one closed disc around them: there the shell split has nothing
 //! to pair by angle and nothing to split.
 
+use rayon::prelude::*;
+
 /// For each of the `vertex_count` vertices, whether its triangles form exactly one closed fan
 /// in which every edge at the vertex is used once each way ([`Links::disc`]).
 pub(super) fn one_disc(triangles: &[[u32; 3]], vertex_count: usize) -> Vec<bool> {
@@ -58,10 +60,7 @@ impl Links {
             }
         }
         let start = end;
-        let mut disc: Vec<bool> = start
-            .windows(2)
-            .map(|w| one_cycle(&mut edges[w[0] as usize..w[1] as usize]))
-            .collect();
+        let mut disc = cycles(&start, &mut edges);
         if repeats {
             // A triangle through a vertex twice is no part of a disc (its link would pass
             // through the vertex itself).
@@ -81,6 +80,37 @@ impl Links {
     pub fn of(&self, v: usize) -> &[(u32, u32)] {
         &self.edges[self.start[v] as usize..self.start[v + 1] as usize]
     }
+}
+
+/// Vertices per block of [`cycles`]: a block's links are walked on one thread.
+const CYCLE_BLOCK: usize = 4096;
+
+/// [`one_cycle`] of every vertex's link, vertex `v`'s being `edges[start[v]..start[v + 1]]`.
+///
+/// Each link is walked on its own edges alone, so blocks of vertices (and the runs of edges
+/// they own) are walked in parallel, each result in its vertex's place: the same for any
+/// number of threads. The walks are about half of [`Links::new`], which runs on one thread in
+/// `to_mesh` otherwise.
+fn cycles(start: &[u32], edges: &mut [(u32, u32)]) -> Vec<bool> {
+    let vertex_count = start.len() - 1;
+    let mut disc = vec![false; vertex_count];
+    let mut blocks = Vec::with_capacity(vertex_count.div_ceil(CYCLE_BLOCK));
+    let mut rest = edges;
+    for (k, flags) in disc.chunks_mut(CYCLE_BLOCK).enumerate() {
+        let first = k * CYCLE_BLOCK;
+        let len = (start[first + flags.len()] - start[first]) as usize;
+        let (own, tail) = std::mem::take(&mut rest).split_at_mut(len);
+        rest = tail;
+        blocks.push((first, flags, own));
+    }
+    blocks.into_par_iter().for_each(|(first, flags, own)| {
+        let base = start[first] as usize;
+        for (k, flag) in flags.iter_mut().enumerate() {
+            let (s, e) = (start[first + k] as usize, start[first + k + 1] as usize);
+            *flag = one_cycle(&mut own[s - base..e - base]);
+        }
+    });
+    disc
 }
 
 /// Whether the directed edges `link` start at distinct vertices and form one cycle; if so, they
