@@ -840,7 +840,7 @@ fn assert_fork_run_passes(run: &str, kept: usize, skipped: &[&str]) {
 
 /// Every input of the round-18 fork run, replayed; the failures listed.
 #[test]
-#[ignore = "open: near-coplanar — 3 inputs of round 18's fork run fail with tiny rotations on (2 mesh volume off the solid's, 1 volume out of bounds), all pass with them off"]
+#[ignore = "open: near-coplanar — 2 inputs of round 18's fork run fail with tiny rotations on (2 mesh volume off the solid's), all pass with them off"]
 fn the_round_18_fork_run_near_coplanar_inputs() {
     assert_fork_run_passes("round18_fork", 69, &FORK_18_PASSING);
 }
@@ -872,16 +872,16 @@ fn the_round_18_fork_run_near_coplanar_inputs() {
 /// inputs of [`FORK_18_SLIVER_ENDS`] and [`FORK_18_NEAR_PLANES`].
 ///
 /// Also passing since the changes named at [`FORK_PASSING`]: the inputs not named above.
-const FORK_18_PASSING: [&str; 66] = [
-    "0052c3eb", "02530f35", "0790ea94", "0827a164", "0d0928b6", "10073393", "1520a690", "1790af98",
-    "1e4064b4", "20453056", "3113dfce", "37e0688d", "37ff3bf3", "3900a850", "3cc49f00", "420d2bab",
-    "5179ded6", "523bd25f", "540b19a9", "5a865123", "5bb3d708", "62f4302a", "71023f02", "7eef8488",
-    "8114e14d", "81d5fe25", "8a96f30b", "94f4cf5d", "9690e076", "9afa182f", "9f600b4c", "a03b7e97",
-    "a08947f3", "a1909398", "a406f929", "aa164e38", "ab676359", "b0b42816", "b0b4ab89", "b153683f",
-    "b447eea7", "b4c5614a", "b69ed8aa", "bdff1088", "be4ad59a", "c0e3de16", "c7455c8d", "c8152ded",
-    "c9b1a2f6", "ca3a7ad3", "ccc60bb4", "ce4b062b", "d52c6d78", "da05d311", "dd18b60b", "df981536",
-    "e26cedea", "e4c5eda4", "e8b2a516", "ee10478e", "f31d7404", "f35b6000", "f74d9e2a", "f966a4ee",
-    "fbbe3eb1", "fc859488",
+const FORK_18_PASSING: [&str; 67] = [
+    "0052c3eb", "02530f35", "0790ea94", "0827a164", "0d0928b6", "10073393", "1520a690", "15d49cd9",
+    "1790af98", "1e4064b4", "20453056", "3113dfce", "37e0688d", "37ff3bf3", "3900a850", "3cc49f00",
+    "420d2bab", "5179ded6", "523bd25f", "540b19a9", "5a865123", "5bb3d708", "62f4302a", "71023f02",
+    "7eef8488", "8114e14d", "81d5fe25", "8a96f30b", "94f4cf5d", "9690e076", "9afa182f", "9f600b4c",
+    "a03b7e97", "a08947f3", "a1909398", "a406f929", "aa164e38", "ab676359", "b0b42816", "b0b4ab89",
+    "b153683f", "b447eea7", "b4c5614a", "b69ed8aa", "bdff1088", "be4ad59a", "c0e3de16", "c7455c8d",
+    "c8152ded", "c9b1a2f6", "ca3a7ad3", "ccc60bb4", "ce4b062b", "d52c6d78", "da05d311", "dd18b60b",
+    "df981536", "e26cedea", "e4c5eda4", "e8b2a516", "ee10478e", "f31d7404", "f35b6000", "f74d9e2a",
+    "f966a4ee", "fbbe3eb1", "fc859488",
 ];
 
 /// Inputs of the round-18 fork run that pass since near polygons are chosen by the other
@@ -1040,19 +1040,30 @@ fn the_crossing_line_band_leaves_a_flat_shell() {
 /// `union_of_a_cube_a_slab_turned_1e_6_degrees_and_a_bar_leaves_no_flat_shell`). With it,
 /// 12bcee43 (step 3, 3 shells) and 42b00a8c (step 2, 2 shells), both not closed, not traced.
 ///
+/// 25a6e85f (an OBJ box turned 1e-9° less a cuboid; step 0 the solid 1.83e-7 below its mesh,
+/// which was right; minimised in `near_coplanar_corners.rs`) since a corner read on a crossing
+/// line of faces at a hair only by the line's rounding is judged beside it when an edge of it
+/// meets the line more than a weld away (`Polygon::beside_the_line` in `polygon/split.rs`):
+/// the line passed the corner 1.56e-5 aside, one operand ended its cut at the corner, the other
+/// at the meet beside it, a flat sliver between. With it, not traced one by one: 4dba1202
+/// (step 1, 2.7e-7 off), 12bcee43, 42b00a8c, 60e1b472 and 7f2fbc81 (not closed), and 3ecaaeed,
+/// 5927f563 and b07b43ca (the solid's volume outside its bounds; 3ecaaeed and 5927f563 united
+/// a flat remnant of 7.1e-16 with a cube and lost 3.4e-6 of it).
+///
 /// Also passing since the changes named at [`FORK_PASSING`]: the inputs not named above.
-const FORK_20_PASSING: [&str; 86] = [
+const FORK_20_PASSING: [&str; 92] = [
     "04880fb6", "060752d1", "0bebd350", "1194b103", "12758e1c", "12bcee43", "1d6b6b28", "1d7d9f8a",
-    "1f854764", "20254c75", "22568913", "22b67390", "24057533", "2a7dd67a", "2f1db746", "394fbf5b",
-    "42b00a8c", "43f8dc80", "44bbfb06", "45e7cb01", "4b6fae9d", "50f56fc8", "52a63048", "53fd6805",
-    "54ad2229", "5ba8f6ed", "5be20e4a", "5f7ef5a2", "6c1d9139", "6c2460ab", "74027838", "778ac30a",
-    "78085500", "79dd0a25", "7d6886ee", "7eb5e225", "7ee590be", "7f2fbc81", "7f88a284", "8116c238",
-    "822b0d3d", "83b87dcb", "84cb559e", "84ce80c0", "87f26b5a", "8936dbd6", "8dea14d6", "91c935ab",
-    "94d83441", "9530713d", "9679585b", "97cf8f64", "98725c3d", "a30a743f", "a3a7185f", "aaf8bd05",
-    "ad644dcd", "afdfb2bf", "b770c958", "c095e8fc", "c287ef50", "c724056e", "c9724cd5", "c9f5e09e",
-    "c9f9a708", "ce00c570", "d116749a", "d3147b45", "d642c6e2", "d6f045bf", "d8a85c01", "dcbd5cd9",
-    "de6a214f", "df3549fa", "e02e0760", "e0c0778c", "e9c633a3", "ea147c0f", "eb2498a7", "ebb7181c",
-    "edf27eb0", "ef943716", "f385f178", "fa3003dd", "fc4b5873", "fe9275bb",
+    "1f854764", "20254c75", "22568913", "22b67390", "24057533", "25a6e85f", "2a7dd67a", "2f1db746",
+    "394fbf5b", "3ecaaeed", "42b00a8c", "43f8dc80", "44bbfb06", "45e7cb01", "4b6fae9d", "4dba1202",
+    "50f56fc8", "52a63048", "53fd6805", "54ad2229", "5927f563", "5ba8f6ed", "5be20e4a", "5f7ef5a2",
+    "60e1b472", "6c1d9139", "6c2460ab", "74027838", "778ac30a", "78085500", "79dd0a25", "7d6886ee",
+    "7eb5e225", "7ee590be", "7f2fbc81", "7f88a284", "8116c238", "822b0d3d", "83b87dcb", "84cb559e",
+    "84ce80c0", "87f26b5a", "8936dbd6", "8dea14d6", "91c935ab", "94d83441", "9530713d", "9679585b",
+    "97cf8f64", "98725c3d", "a30a743f", "a3a7185f", "aaf8bd05", "ad644dcd", "afdfb2bf", "b07b43ca",
+    "b770c958", "c095e8fc", "c287ef50", "c724056e", "c9724cd5", "c9f5e09e", "c9f9a708", "ce00c570",
+    "d116749a", "d3147b45", "d642c6e2", "d6f045bf", "d8a85c01", "dcbd5cd9", "de6a214f", "df3549fa",
+    "e02e0760", "e0c0778c", "e9c633a3", "ea147c0f", "eb2498a7", "ebb7181c", "edf27eb0", "ef943716",
+    "f385f178", "fa3003dd", "fc4b5873", "fe9275bb",
 ];
 
 /// The inputs of the round-20 fork run that pass now ([`FORK_20_PASSING`]).
@@ -1064,7 +1075,7 @@ fn the_round_20_fork_run_inputs_that_pass() {
 
 /// Every other input of the round-20 fork run, replayed; the failures listed.
 #[test]
-#[ignore = "open: near-coplanar — 22 inputs of round 20's fork run fail with tiny rotations on (5 not closed, 6 mesh volume off the solid's, 4 volume out of bounds, 7 needles), all pass with them off"]
+#[ignore = "open: near-coplanar — 16 inputs of round 20's fork run fail with tiny rotations on (4 not closed, 4 mesh volume off the solid's, 1 volume out of bounds, 7 needles), all pass with them off"]
 fn the_round_20_fork_run_near_coplanar_inputs() {
     assert_fork_run_passes("round20_fork", 108, &FORK_20_PASSING);
 }
