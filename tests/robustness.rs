@@ -61,7 +61,7 @@ fn cube_minus_cube_rotated_a_millionth_degree() {
 /// cubes share, it leaves slivers 7.9e-7 wide and 1e-16 thick, which the weld laid flat as
 /// triangles back to back; at 3e-9° the mesh was closed with 1 needle. Both clean since a
 /// triangle and its reverse are dropped together (`cancel_reversed_pairs` in
-/// `mesh/repair/shells.rs`; 5e-9°: 24 triangles, mesh 6.86e-11 against the first order 7.29e-11).
+/// `mesh/repair/fins.rs`; 5e-9°: 24 triangles, mesh 6.86e-11 against the first order 7.29e-11).
 #[test]
 fn cube_minus_cube_turned_about_a_skew_axis() {
     let cube = Solid::cube(1.0)
