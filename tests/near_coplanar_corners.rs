@@ -3,32 +3,26 @@
 //! one point there, or the solid's polygons leave a flat unmatched sliver and its volume
 //! (summed about the box centre) is off by the sliver's area times its lever.
 
+use bspcsg::Solid;
 use bspcsg::glam::{DQuat, DVec3};
-use bspcsg::{Mesh, Solid};
 
-/// A box of `size` centred at the origin, read as a mesh (two triangles a face), as the fuzz
-/// programs' OBJ box is: the crate's cuboid, with its quads, does not show what is below.
+// The fuzz programs' own OBJ box (two triangles a face): the crate's cuboid, with its quads,
+// does not show what is below.
+#[path = "../fuzz/fuzz_targets/program.rs"]
+#[allow(dead_code)]
+mod program;
+
+/// A box of `size` centred at the origin, read as a mesh as the fuzz programs' OBJ box is.
 fn obj_box(size: DVec3) -> Solid {
-    let p = |i: usize| {
-        DVec3::new(
-            if i & 1 == 0 { -0.5 } else { 0.5 },
-            if i & 2 == 0 { -0.5 } else { 0.5 },
-            if i & 4 == 0 { -0.5 } else { 0.5 },
-        ) * size
-    };
-    let quads: [[u32; 4]; 6] = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    let triangles = quads
-        .iter()
-        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-        .collect();
-    Solid::from_mesh(&Mesh::new((0..8).map(p).collect(), triangles)).unwrap()
+    Solid::from_mesh(&program::obj_box(size)).unwrap()
+}
+
+/// The cuboid both cases subtract: its top and +x face cut the box.
+fn cuboid() -> Solid {
+    Solid::cuboid(DVec3::new(0.375, 1.125, 1.375))
+        .unwrap()
+        .translate(DVec3::new(0.0, 0.0, -0.5))
+        .unwrap()
 }
 
 /// Round 20's fork input 25a6e85f, step 0, minimised: a 0.5 × 0.125 × 1.125 OBJ box turned
@@ -57,11 +51,7 @@ fn a_crossing_line_ending_at_a_corner_within_its_rounding_leaves_no_sliver() {
         .unwrap()
         .translate(DVec3::new(0.125, 0.4375, -0.375))
         .unwrap();
-    let cuboid = Solid::cuboid(DVec3::new(0.375, 1.125, 1.375))
-        .unwrap()
-        .translate(DVec3::new(0.0, 0.0, -0.5))
-        .unwrap();
-    let result = &turned - &cuboid;
+    let result = &turned - &cuboid();
     let mesh = result.to_mesh();
     let report = mesh.report();
     assert!(report.is_closed_manifold(), "{report}");
@@ -85,11 +75,7 @@ fn the_same_difference_unturned_is_exact() {
     let box_ = obj_box(DVec3::new(0.5, 0.125, 1.125))
         .translate(DVec3::new(0.125, 0.4375, -0.375))
         .unwrap();
-    let cuboid = Solid::cuboid(DVec3::new(0.375, 1.125, 1.375))
-        .unwrap()
-        .translate(DVec3::new(0.0, 0.0, -0.5))
-        .unwrap();
-    let result = &box_ - &cuboid;
+    let result = &box_ - &cuboid();
     let want = 0.1875 * 0.125 * 1.125;
     assert!(
         (result.volume() - want).abs() < 1e-15,

@@ -25,7 +25,8 @@ impl Bytes<'_> {
 /// Grid step for exact placements: multiples of 1/8 are exact in binary.
 const STEP: f64 = 0.125;
 
-fn obj_box(size: DVec3) -> Mesh {
+/// A box of `size` centred at the origin, two triangles a face, as an OBJ file brings it.
+pub(crate) fn obj_box(size: DVec3) -> Mesh {
     let p = |i: usize| {
         DVec3::new(
             if i & 1 == 0 { -0.5 } else { 0.5 },

@@ -165,18 +165,28 @@ fn flap(
     if !by_edge && corners.is_none() {
         return None;
     }
-    let reversed = [tri[0], tri[2], tri[1]];
-    let turns = |other: [u32; 3]| {
-        (0..3).any(|k| other == [reversed[k], reversed[(k + 1) % 3], reversed[(k + 2) % 3]])
-    };
-    let t = (0..3)
-        .filter_map(|k| owner.get(&(tri[(k + 1) % 3], tri[k])).copied())
-        .find(|&t| turns(triangles[t as usize]))?;
+    let t = reverse_of(owner, triangles, tri)?;
     let at_corner = |fan: &[u32]| {
         tri.iter()
             .any(|&v| fan[v as usize + 1] - fan[v as usize] > 1)
     };
     (by_edge || corners.is_some_and(at_corner)).then_some(t)
+}
+
+/// The triangle already there that runs exactly against `tri` (its corners in reverse, from
+/// any start), found across any of `tri`'s edges (`owner` keeps one triangle per half-edge).
+fn reverse_of(
+    owner: &FxHashMap<(u32, u32), u32>,
+    triangles: &[[u32; 3]],
+    tri: [u32; 3],
+) -> Option<u32> {
+    let reversed = [tri[0], tri[2], tri[1]];
+    let turns = |other: [u32; 3]| {
+        (0..3).any(|k| other == [reversed[k], reversed[(k + 1) % 3], reversed[(k + 2) % 3]])
+    };
+    (0..3)
+        .filter_map(|k| owner.get(&(tri[(k + 1) % 3], tri[k])).copied())
+        .find(|&t| turns(triangles[t as usize]))
 }
 
 /// For each of a loop's fill triangles `tris`, the triangle already there that runs exactly
@@ -200,13 +210,8 @@ fn ears_on_rim(
     rim: &[(u32, u32)],
 ) -> Vec<Option<u32>> {
     let ear = |tri: [u32; 3]| {
+        let t = reverse_of(owner, triangles, tri)?;
         let reversed = [tri[0], tri[2], tri[1]];
-        let turns = |other: [u32; 3]| {
-            (0..3).any(|k| other == [reversed[k], reversed[(k + 1) % 3], reversed[(k + 2) % 3]])
-        };
-        let t = (0..3)
-            .filter_map(|k| owner.get(&(tri[(k + 1) % 3], tri[k])).copied())
-            .find(|&t| turns(triangles[t as usize]))?;
         let held = (0..3).all(|k| {
             let (a, b) = (reversed[k], reversed[(k + 1) % 3]);
             rim.contains(&(a, b)) || uses.get(&(b, a)).copied().unwrap_or(0) >= 1

@@ -16,10 +16,11 @@
 //!    itself keeps its polygons instead.
 //! 5. **Shells**: a triangle and its reverse (a sliver thinner than the weld, laid flat as a fin),
 //!    and four triangles closing a flat tetrahedron within a weld of one plane (a quad's two
-//!    triangulations, or a triangle folded over a sliver), are dropped together ([`fins`]); half-edges are paired (around an edge shared by more than two
-//!    triangles, by angle, so each pair encloses solid) and every vertex is split into one copy
-//!    per fan of triangles around it. Solids touching along an edge or at a vertex come out as
-//!    separate manifold shells ([`shells`]).
+//!    triangulations, or a triangle folded over a sliver), are dropped together ([`fins`]);
+//!    half-edges are paired (around an edge shared by more than two triangles, by angle, so each
+//!    pair encloses solid) and every vertex is split into one copy per fan of triangles around
+//!    it. Solids touching along an edge or at a vertex come out as separate manifold shells
+//!    ([`shells`]).
 
 mod buckets;
 mod cracks;
