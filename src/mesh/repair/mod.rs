@@ -10,7 +10,7 @@
 //! 3. **Regions**: edge-adjacent polygons of one source in one plane merge; their shared edges
 //!    cancel, leaving each region's boundary. A vertex that only passes straight through on
 //!    every boundary it lies on is dropped from all of them at once, so neighbours stay matched
-//!    ([`regions`]).
+//!    ([`regions`], [`straight`]).
 //! 4. **Triangulate** each region by constrained Delaunay triangulation of its boundary: no
 //!    zero-area triangles, no new vertices (`mesh::triangulate`). A region whose boundary crosses
 //!    itself keeps its polygons instead.
@@ -36,6 +36,7 @@ mod pass;
 mod regions;
 mod runs;
 mod shells;
+mod straight;
 mod thin;
 mod tjunction;
 
