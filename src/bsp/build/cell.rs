@@ -2,8 +2,8 @@
 
 use glam::DVec3;
 
-use super::Ids;
 use super::arena::Arena;
+use super::{Ids, Scratch};
 use crate::geom::{Aabb, Plane};
 use crate::polygon::{Polygon, Split};
 
@@ -78,24 +78,28 @@ pub(super) fn wrap_plane(ids: &Ids, arena: &Arena, eps: f64) -> Option<Plane> {
     let (low, high) = (bbox.min - 4.0 * eps, bbox.max + 4.0 * eps);
     let (mut below, mut above) = ([0usize; 3], [0usize; 3]);
     let (mut below_edge, mut above_edge) = ([f64::NEG_INFINITY; 3], [f64::INFINITY; 3]);
-    // The count a side needs; once no side can reach it with the far polygons left, none will.
+    // The count a side needs; once no side can reach it with the far polygons left, none will
+    // (checked every `CHUNK` polygons).
+    const CHUNK: usize = 32;
     let need = ids.len().div_ceil(2);
-    for (k, &i) in ids.far.iter().enumerate() {
-        if k % 32 == 0 {
-            let most = below.iter().chain(&above).copied().max().unwrap_or(0);
-            if most + (ids.far.len() - k) < need {
-                return None;
-            }
+    let mut left = ids.far.len();
+    for chunk in ids.far.chunks(CHUNK) {
+        let most = below.iter().chain(&above).copied().max().unwrap_or(0);
+        if most + left < need {
+            return None;
         }
-        let b = &arena.boxes[i as usize];
-        for axis in 0..3 {
-            if b.max[axis] < low[axis] {
-                below[axis] += 1;
-                below_edge[axis] = below_edge[axis].max(b.max[axis]);
-            }
-            if b.min[axis] > high[axis] {
-                above[axis] += 1;
-                above_edge[axis] = above_edge[axis].min(b.min[axis]);
+        left -= chunk.len();
+        for &i in chunk {
+            let b = &arena.boxes[i as usize];
+            for axis in 0..3 {
+                if b.max[axis] < low[axis] {
+                    below[axis] += 1;
+                    below_edge[axis] = below_edge[axis].max(b.max[axis]);
+                }
+                if b.min[axis] > high[axis] {
+                    above[axis] += 1;
+                    above_edge[axis] = above_edge[axis].min(b.min[axis]);
+                }
             }
         }
     }
@@ -169,12 +173,18 @@ fn gap_near_median(keys: &mut [i64], min_gap: f64) -> Option<f64> {
 ///
 /// A far polygon (see [`Focus`]) goes whole to each side its box reaches beyond the tolerance
 /// (both, where it lies within it).
-pub(super) fn split_cell(ids: Ids, plane: &Plane, eps: f64, arena: &mut Arena) -> (Ids, Ids) {
+pub(super) fn split_cell(
+    ids: Ids,
+    plane: &Plane,
+    eps: f64,
+    arena: &mut Arena,
+    scratch: &mut Scratch,
+) -> (Ids, Ids) {
     let axis = plane.normal.abs().max_position();
     let at = plane.offset;
     // Either side may take every polygon (and pieces of the spanning ones): no regrowing.
-    let (mut front, mut back) = (Ids::with_room_for(&ids), Ids::with_room_for(&ids));
-    for id in ids.far {
+    let (mut front, mut back) = (scratch.ids_like(&ids), scratch.ids_like(&ids));
+    for &id in &ids.far {
         let b = &arena.boxes[id as usize];
         if b.max[axis] > at + eps || b.min[axis] >= at - eps {
             front.far.push(id);
@@ -183,7 +193,7 @@ pub(super) fn split_cell(ids: Ids, plane: &Plane, eps: f64, arena: &mut Arena) -
             back.far.push(id);
         }
     }
-    for id in ids.near {
+    for &id in &ids.near {
         let b = &arena.boxes[id as usize];
         let given = arena.given(id);
         match axis_split(arena.poly(id), b, given, plane, axis, eps) {
@@ -199,6 +209,7 @@ pub(super) fn split_cell(ids: Ids, plane: &Plane, eps: f64, arena: &mut Arena) -
             }
         }
     }
+    scratch.recycle_ids(ids);
     (front, back)
 }
 

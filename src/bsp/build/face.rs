@@ -25,12 +25,12 @@ impl Tree {
         arena: &mut Arena,
         scratch: &mut Scratch,
     ) -> (Node, Ids, Ids) {
-        let (mut front, mut back) = (Ids::with_room_for(&ids), Ids::with_room_for(&ids));
+        let (mut front, mut back) = (scratch.ids_like(&ids), scratch.ids_like(&ids));
         let Ids { near: ids, far } = ids;
         let chosen = choose_splitter(&ids, arena, eps, scratch);
         let plane = *arena.poly(chosen).plane();
         // Far polygons are never cut nor chosen: each goes whole to every side it reaches.
-        for id in far {
+        for &id in &far {
             let (mut ahead, mut behind) = (false, false);
             for &v in arena.poly(id).vertices() {
                 let d = plane.distance(v);
@@ -50,7 +50,7 @@ impl Tree {
         // The vertices within `eps` of the plane of nearly parallel polygons sent to one side
         // (see `Wedge`).
         let mut wedge = Wedge::default();
-        for (k, id) in ids.into_iter().enumerate() {
+        for (k, &id) in ids.iter().enumerate() {
             let class = scratch.best.get(k).copied().unwrap_or(Class::Unsettled);
             let poly = arena.poly(id);
             let parallel =
@@ -108,6 +108,8 @@ impl Tree {
                 }
             }
         }
+        scratch.recycle(ids);
+        scratch.recycle(far);
         // Steep polygons ending at such a vertex on the other side also bound that side.
         if !wedge.ahead.is_empty() {
             let follow = wedge.followers(&back.near, arena, &plane, eps, Side::Front);
