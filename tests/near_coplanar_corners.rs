@@ -84,3 +84,75 @@ fn the_same_difference_unturned_is_exact() {
     );
     assert!((result.to_mesh().volume() - want).abs() < 1e-15);
 }
+
+/// The tilt of [`tilted_box`]'s top: sine 1.46·10⁻¹¹, as the turned box's above.
+const TILT: f64 = 1.0 / (1u64 << 36) as f64;
+
+/// The fuzz programs' OBJ box 2 × 2 × 1.5 over [-0.5, 1.5]², its bottom at z = -1 and its top
+/// raised from z = 0.5 by `TILT` × `rise(x, y)` at each corner: a plane, `rise` being linear,
+/// crossing z = 0.5 where `rise` is 0. Every coordinate is a short dyadic, so the corners are
+/// exact.
+fn tilted_box(rise: fn(f64, f64) -> f64) -> Solid {
+    let mut mesh = program::obj_box(DVec3::new(2.0, 2.0, 1.5));
+    for p in &mut mesh.positions {
+        *p += DVec3::new(0.5, 0.5, -0.25);
+        if p.z > 0.0 {
+            p.z += TILT * rise(p.x, p.y);
+        }
+    }
+    Solid::from_mesh(&mesh).unwrap()
+}
+
+/// The OBJ box [0, 1]² × [-0.75, 0.5], its top split along its diagonal from (0, 0) to (1, 1).
+fn unit_box() -> Solid {
+    obj_box(DVec3::new(1.0, 1.0, 1.25))
+        .translate(DVec3::new(0.5, 0.5, -0.125))
+        .unwrap()
+}
+
+/// A box's top and another's tilted by 2⁻³⁶ cross on a line that passes corners of the first
+/// top given there to the bit, not made on it by a split (the case `beside_the_line` in
+/// `polygon/split.rs` leaves to the rounding band: no edge of such a corner meets the line
+/// away from it, except along the line itself). Three lines: along the top's own diagonal
+/// (x = y, through (0, 0) and (1, 1)), across it (x + y = 1, through (1, 0) and (0, 1)), and
+/// through the corner (0, 0) and the middle of the edge y = 1 (y = 2x). The wedge where the
+/// unit box's top rises above the tilted one, `TILT` × `wedge` in volume (10⁻¹² or less, below
+/// the weld), is the difference; the union, intersection and the other difference must each
+/// be closed, manifold and within 10⁻¹¹ of their volume, mesh and solid alike.
+#[test]
+fn tops_crossing_at_a_hair_through_given_corners_close_with_their_volume() {
+    type Rise = fn(f64, f64) -> f64;
+    // The rise, the tilted box's volume and the wedge's (each over TILT).
+    let lines: [(Rise, f64, f64); 3] = [
+        (|x, y| x - y, 0.0, 1.0 / 6.0),
+        (|x, y| x + y - 1.0, 0.0, 1.0 / 6.0),
+        (|x, y| 2.0 * x - y, 2.0, 1.0 / 12.0),
+    ];
+    for (k, (rise, extra, wedge)) in lines.into_iter().enumerate() {
+        let (a, b) = (unit_box(), tilted_box(rise));
+        let (a_volume, b_volume, wedge) = (1.25, 6.0 + TILT * extra, TILT * wedge);
+        let cases = [
+            ("union", &a | &b, b_volume + wedge),
+            ("intersection", &a & &b, a_volume - wedge),
+            ("tilted less unit", &b - &a, b_volume - a_volume + wedge),
+            ("unit less tilted", &a - &b, wedge),
+        ];
+        for (name, result, want) in cases {
+            let mesh = result.to_mesh();
+            let report = mesh.report();
+            assert!(report.is_closed_manifold(), "line {k}, {name}: {report}");
+            // The wedge alone may go: it is thinner than the weld.
+            let slack = 1e-11 + wedge;
+            assert!(
+                (mesh.volume() - want).abs() < slack,
+                "line {k}, {name}: mesh {} against {want}",
+                mesh.volume()
+            );
+            assert!(
+                (result.volume() - want).abs() < slack,
+                "line {k}, {name}: the solid's {} against {want}",
+                result.volume()
+            );
+        }
+    }
+}

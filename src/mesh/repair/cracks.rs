@@ -320,6 +320,64 @@ mod tests {
     use glam::DVec3;
 
     use super::close_flat_cracks;
+    use crate::hash::FxHashMap;
+
+    /// Whether every directed edge of `triangles` is used once, and once the other way.
+    fn closed(triangles: &[[u32; 3]]) -> bool {
+        let mut uses: FxHashMap<(u32, u32), u32> = FxHashMap::default();
+        for t in triangles {
+            for k in 0..3 {
+                *uses.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+            }
+        }
+        uses.iter()
+            .all(|(&(a, b), &n)| n == 1 && uses.get(&(b, a)) == Some(&1))
+    }
+
+    /// A slit in the flat top of a pyramid whose rim runs along two edges of a sliver ear
+    /// `0 1 2` (10⁻⁶ high on an edge of 1) folded over the face beside it: the ear faces
+    /// against the top, as rounding leaves a sliver where two tops cross at a hair, and
+    /// hangs on the top's edge 0–2. The slit `0 → 1 → 2 → 3` turns back at 0 (its corner 3
+    /// lies 10⁻⁷ below the line 0–2, left of 0), so its only fill is `0 3 2` and `2 1 0`, the
+    /// ear's exact reverse, none of whose edges has three uses: no flap. Laid on the ear, the
+    /// two made a closed flat shell and the top's edge 0–2 two uses each way; the ear is taken
+    /// away instead and the top closes as one sheet.
+    #[test]
+    fn a_fill_triangle_that_reverses_an_ear_on_the_rim_takes_the_ear_away() {
+        let positions = vec![
+            DVec3::ZERO,
+            DVec3::new(0.5, 1e-6, 0.0),
+            DVec3::X,
+            DVec3::new(-0.1, -1e-7, 0.0),
+            DVec3::new(0.5, 1.0, 0.0),
+            DVec3::new(0.5, -1.0, 0.0),
+            DVec3::new(-1.0, 0.0, 0.0),
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(0.5, 0.0, -1.0),
+        ];
+        let ear = [0, 1, 2];
+        let top = [
+            [0, 2, 4],
+            ear,
+            [2, 7, 4],
+            [6, 0, 4],
+            [3, 0, 6],
+            [6, 5, 3],
+            [2, 3, 5],
+            [5, 7, 2],
+        ];
+        let sides = [[5, 6, 8], [7, 5, 8], [4, 7, 8], [6, 4, 8]];
+        let triangles: Vec<[u32; 3]> = top.iter().chain(&sides).copied().collect();
+        let count = triangles.len();
+        assert!(!closed(&triangles));
+        let mut mesh = (triangles, vec![0; count]);
+        assert_eq!(close_flat_cracks(&positions, &mut mesh, 1e-12), 1);
+        assert!(!mesh.0.contains(&ear), "{:?}", mesh.0);
+        assert!(closed(&mesh.0), "{:?}", mesh.0);
+        // One fill triangle in for the ear: `0 3 2`.
+        assert_eq!(mesh.0.len(), count);
+        assert_eq!(mesh.1.len(), count);
+    }
 
     /// A flap of two slivers hung on a tetrahedron's edge 0–1, whose rim the fill would close by
     /// the other diagonal (4–5, the short one): no fill triangle is the reverse of a flap's, and

@@ -209,4 +209,78 @@ mod tests {
         assert_eq!(triangles.len(), 5);
         assert_eq!(filled_from, 5);
     }
+
+    /// The triangles [`cancel_reversed_pairs`] keeps of `triangles` at a weld of 1e-6, every
+    /// vertex but `discs` taken as no disc.
+    fn kept(positions: &[DVec3], triangles: &[[u32; 3]], discs: &[u32]) -> Vec<[u32; 3]> {
+        let mut triangles = triangles.to_vec();
+        let mut sources = vec![0; triangles.len()];
+        let mut filled_from = triangles.len();
+        let disc: Vec<bool> = (0..positions.len() as u32)
+            .map(|v| discs.contains(&v))
+            .collect();
+        let fins = (positions, FIN_SHORTEST_WELDS * 1e-6);
+        cancel_reversed_pairs(fins, &mut triangles, &mut sources, &disc, &mut filled_from);
+        assert_eq!(
+            (sources.len(), filled_from),
+            (triangles.len(), triangles.len())
+        );
+        triangles
+    }
+
+    /// The same four triangles as a fold: `0 3 1` (area 0.5) laid over `0 1 2`, `0 2 3` and
+    /// `3 2 1`, whose shared corner 2 lies inside it 10⁻⁷ from its edge 0–3, so that `0 2 3`
+    /// is a sliver (5·10⁻⁸; a fork input's was 1.7·10⁻¹³ under triangles of 10⁻²). A closed
+    /// flat tetrahedron too, dropped whole (corner 2, where only the three meet, is a disc:
+    /// the others are not). Two welds above the sheet, the fold is kept.
+    #[test]
+    fn a_triangle_folded_over_a_sliver_is_dropped_with_it() {
+        let fold = |lift: f64| {
+            let positions = [
+                DVec3::ZERO,
+                DVec3::X,
+                DVec3::new(1e-7, 0.5, lift),
+                DVec3::Y,
+                DVec3::new(0.5, -0.5, 1.0),
+            ];
+            let triangles = [[0, 1, 2], [0, 2, 3], [0, 3, 1], [3, 2, 1], [0, 1, 4]];
+            kept(&positions, &triangles, &[2])
+        };
+        assert_eq!(fold(0.0), vec![[0, 1, 4]]);
+        assert_eq!(fold(0.5e-6), vec![[0, 1, 4]]);
+        assert_eq!(fold(2e-6).len(), 5);
+    }
+
+    /// Two thin pyramids base to base, 2·10⁻⁶ high each (two welds): the lower one's top
+    /// split along 0–2, the upper one's bottom along 1–3. The four base triangles are a flat
+    /// tetrahedron and go, as a union joins the two; the eight sides, themselves a thin closed
+    /// solid, are no fin and all stay, closed, with both pyramids' volume.
+    #[test]
+    fn two_thin_parts_face_to_face_keep_everything_but_the_face() {
+        let height = 2e-6;
+        let positions = [
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::Y,
+            DVec3::new(0.5, 0.5, -height),
+            DVec3::new(0.5, 0.5, height),
+        ];
+        let face = [[0, 1, 2], [0, 2, 3], [0, 3, 1], [3, 2, 1]];
+        let below = [[1, 0, 4], [2, 1, 4], [3, 2, 4], [0, 3, 4]];
+        let above = [[0, 1, 5], [1, 2, 5], [2, 3, 5], [3, 0, 5]];
+        let triangles: Vec<[u32; 3]> = face.iter().chain(&below).chain(&above).copied().collect();
+        let sides: Vec<[u32; 3]> = below.iter().chain(&above).copied().collect();
+        let left = kept(&positions, &triangles, &[4, 5]);
+        assert_eq!(left, sides);
+        let mesh = crate::mesh::Mesh::new(positions.to_vec(), left);
+        let report = mesh.report();
+        assert!(report.is_closed_manifold(), "{report}");
+        let want = 2.0 * height / 3.0;
+        assert!(
+            (mesh.volume() - want).abs() < 1e-9 * want,
+            "{}",
+            mesh.volume()
+        );
+    }
 }
