@@ -1,6 +1,7 @@
 //! Bit-exact vertex welding: equal coordinates become one vertex.
 
 use glam::DVec3;
+use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use crate::hash::{KeyedBuild, KeyedHashMap, key};
@@ -30,6 +31,56 @@ impl Welder {
         }
         i
     }
+}
+
+/// From this many points on, and with more than one thread, the exact weld runs in two halves
+/// (below it the join costs more than it saves).
+const HALVES_FROM: usize = 1 << 13;
+
+/// One index per distinct position of `points`, numbered in the order positions are first met
+/// (as [`Welder::index`] over `points` in order): the positions and each point's index.
+pub(crate) fn weld_exact(points: &[DVec3]) -> (Vec<DVec3>, Vec<u32>) {
+    if points.len() >= HALVES_FROM && rayon::current_num_threads() > 1 {
+        weld_exact_in_halves(points)
+    } else {
+        weld_exact_serial(points)
+    }
+}
+
+fn weld_exact_serial(points: &[DVec3]) -> (Vec<DVec3>, Vec<u32>) {
+    let mut exact = Welder::with_capacity(points.len());
+    let first: Vec<u32> = points.iter().map(|&p| exact.index(p)).collect();
+    (exact.positions, first)
+}
+
+/// [`weld_exact`] with each half welded on its own thread, then merged: a position of the
+/// second half the first half holds takes the first half's index; one first met in the second
+/// half is numbered after every position of the first half, in second-half order. That is the
+/// serial numbering, bit for bit (the first half's positions are its first occurrences, and the
+/// second half's new ones follow in the order the serial weld meets them).
+fn weld_exact_in_halves(points: &[DVec3]) -> (Vec<DVec3>, Vec<u32>) {
+    let (a, b) = points.split_at(points.len() / 2);
+    let weld = |half: &[DVec3]| {
+        let mut w = Welder::with_capacity(half.len());
+        let first: Vec<u32> = half.iter().map(|&p| w.index(p)).collect();
+        (w, first)
+    };
+    let ((first_half, mut first), (second_half, second)) = rayon::join(|| weld(a), || weld(b));
+    // Per distinct position of the second half: its index in the first half, or none.
+    let mut renumber: Vec<u32> = second_half
+        .positions
+        .par_iter()
+        .map(|&p| first_half.map.get(&key(p)).copied().unwrap_or(u32::MAX))
+        .collect();
+    let mut positions = first_half.positions;
+    for (r, &p) in renumber.iter_mut().zip(&second_half.positions) {
+        if *r == u32::MAX {
+            *r = positions.len() as u32;
+            positions.push(p);
+        }
+    }
+    first.par_extend(second.par_iter().map(|&i| renumber[i as usize]));
+    (positions, first)
 }
 
 /// Where a wider weld is allowed: around the vertices of cracks an earlier pass left. A point
@@ -101,10 +152,9 @@ impl Wide {
 /// chain along a line of close points. Returns the representatives and, for each input point,
 /// its representative's index.
 pub(crate) fn weld_within(points: &[DVec3], delta: f64, wide: &Wide) -> (Vec<DVec3>, Vec<u32>) {
-    let mut exact = Welder::with_capacity(points.len());
-    let first: Vec<u32> = points.iter().map(|&p| exact.index(p)).collect();
+    let (positions, first) = weld_exact(points);
     if delta <= 0.0 {
-        return (exact.positions, first);
+        return (positions, first);
     }
     // Cells much larger than any reach: a representative within reach of a point lies in the
     // point's own cell, or in a neighbour only where the point is within reach of that side.
@@ -112,11 +162,11 @@ pub(crate) fn weld_within(points: &[DVec3], delta: f64, wide: &Wide) -> (Vec<DVe
     let cell_size = 64.0 * widest;
     let cell = |p: DVec3| cell_of(p, cell_size);
     let mut grid: KeyedHashMap<[i64; 3], SmallVec<[u32; 2]>> =
-        KeyedHashMap::with_capacity_and_hasher(exact.positions.len(), KeyedBuild::default());
-    let mut reps: Vec<DVec3> = Vec::with_capacity(exact.positions.len());
-    let mut rep_reach: Vec<f64> = Vec::with_capacity(exact.positions.len());
-    let mut rep_of: Vec<u32> = Vec::with_capacity(exact.positions.len());
-    for &p in &exact.positions {
+        KeyedHashMap::with_capacity_and_hasher(positions.len(), KeyedBuild::default());
+    let mut reps: Vec<DVec3> = Vec::with_capacity(positions.len());
+    let mut rep_reach: Vec<f64> = Vec::with_capacity(positions.len());
+    let mut rep_of: Vec<u32> = Vec::with_capacity(positions.len());
+    for &p in &positions {
         let reach = wide.reach(p, delta);
         let c = cell(p);
         // Per axis, the neighbour offsets worth looking at.
@@ -161,7 +211,7 @@ pub(crate) fn weld_within(points: &[DVec3], delta: f64, wide: &Wide) -> (Vec<DVe
         });
         rep_of.push(r);
     }
-    let map = first.into_iter().map(|i| rep_of[i as usize]).collect();
+    let map = first.par_iter().map(|&i| rep_of[i as usize]).collect();
     (reps, map)
 }
 
@@ -193,6 +243,39 @@ mod tests {
     use super::*;
     use crate::hash::FxBuild;
     use crate::hash::test_support::{bucket_collisions, lcg};
+
+    /// The exact weld in two halves numbers positions as the serial weld does, bit for bit:
+    /// repeats within each half and across the halves, a position first met in the second half
+    /// (numbered after all of the first half's), and the signed zeros that are one key (the
+    /// first one met is kept).
+    #[test]
+    fn the_exact_weld_in_halves_is_the_serial_weld() {
+        let mut next = lcg(11);
+        for n in [2usize, 3, 17, 1000, 5000] {
+            for spread in [1u64, 7, 40, 4000] {
+                let points: Vec<DVec3> = (0..n)
+                    .map(|_| {
+                        let c = |s: u64| (s % spread) as f64 - (spread / 2) as f64;
+                        let p = DVec3::new(c(next() >> 20), c(next() >> 20), 0.0);
+                        if next() >> 63 == 1 { -p } else { p }
+                    })
+                    .collect();
+                let (serial, first) = weld_exact_serial(&points);
+                let (halves, first_halves) = weld_exact_in_halves(&points);
+                let bits = |v: &[DVec3]| v.iter().map(|p| key_bits(*p)).collect::<Vec<_>>();
+                assert_eq!(bits(&serial), bits(&halves), "{n} points, spread {spread}");
+                assert_eq!(first, first_halves, "{n} points, spread {spread}");
+                // A weld that merges nothing (spread 4000 over 17 points) is tested too, and
+                // one that merges most (spread 1).
+                assert!(serial.len() <= n);
+            }
+        }
+    }
+
+    /// The raw bits of `p`, signed zeros apart.
+    fn key_bits(p: DVec3) -> [u64; 3] {
+        [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()]
+    }
 
     /// The cell floor agrees with the library's floor, saturation and NaN included.
     #[test]

@@ -2,6 +2,7 @@
 //! a boolean.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use crate::geom::Plane;
 use crate::hash::KeyedHashMap;
@@ -32,27 +33,31 @@ type Key = [[u64; 6]; 3];
 /// it stays where that operand's side tests put it), chosen the same whichever order the
 /// polygons come in.
 pub(crate) fn share_near_parallel_vertices(groups: &mut [&mut Vec<Polygon>], eps: f64) {
-    let mut least: KeyedHashMap<Key, DVec3> = KeyedHashMap::default();
     // The vertices that have a key, in order, so the second pass computes none again (the
-    // planes' sines were half of this pass on real models).
+    // planes' sines were half of this pass on real models). With more than one thread the keys
+    // are found in parallel (every vertex's planes and sines: nearly all of the work), listed
+    // in the same order.
+    let parallel = rayon::current_num_threads() > 1;
     let mut keyed: Vec<(u32, u32, u32, Key)> = Vec::new();
     for (g, group) in groups.iter().enumerate() {
-        for (i, p) in group.iter().enumerate() {
-            for k in 0..p.vertices.len() {
-                if let Some(key) = key_of(p, k) {
-                    let v = p.vertices[k];
-                    least
-                        .entry(key)
-                        .and_modify(|w| {
-                            if lex_less(v, *w) {
-                                *w = v;
-                            }
-                        })
-                        .or_insert(v);
-                    keyed.push((g as u32, i as u32, k as u32, key));
-                }
-            }
+        if parallel {
+            let found = group.par_iter().enumerate();
+            keyed.par_extend(found.flat_map_iter(|(i, p)| keys_of(g, i, p)));
+        } else {
+            keyed.extend(group.iter().enumerate().flat_map(|(i, p)| keys_of(g, i, p)));
         }
+    }
+    let mut least: KeyedHashMap<Key, DVec3> = KeyedHashMap::default();
+    for &(g, i, k, key) in &keyed {
+        let v = groups[g as usize][i as usize].vertices[k as usize];
+        least
+            .entry(key)
+            .and_modify(|w| {
+                if lex_less(v, *w) {
+                    *w = v;
+                }
+            })
+            .or_insert(v);
     }
     if least.is_empty() {
         return;
@@ -69,6 +74,12 @@ pub(crate) fn share_near_parallel_vertices(groups: &mut [&mut Vec<Polygon>], eps
             p.vertices[k] = w;
         }
     }
+}
+
+/// The keyed vertices of polygon `i` of group `g`: (group, polygon, vertex, key).
+fn keys_of(g: usize, i: usize, p: &Polygon) -> impl Iterator<Item = (u32, u32, u32, Key)> + '_ {
+    (0..p.vertices.len())
+        .filter_map(move |k| key_of(p, k).map(|key| (g as u32, i as u32, k as u32, key)))
 }
 
 /// The sorted planes vertex `k` of `p` lies on, if both its edges' planes are known, the three

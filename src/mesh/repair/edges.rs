@@ -62,8 +62,33 @@ pub(super) fn sort_by_edge(keyed: &[(u64, u32)], vertex_count: usize) -> Buckets
         vertex_count,
         keyed.iter().map(|&entry| ((entry.0 >> 32) as usize, entry)),
     );
-    for w in sorted.starts.windows(2) {
-        let run = &mut sorted.items[w[0] as usize..w[1] as usize];
+    let halves = rayon::current_num_threads() > 1;
+    sort_runs(&sorted.starts, &mut sorted.items, halves);
+    sorted
+}
+
+/// From this many half-edges on, with more than one thread, the runs are sorted in two halves
+/// at a vertex's boundary, one per thread (each run is sorted alone, so the result is the same).
+const HALVES_FROM: usize = 1 << 14;
+
+/// Sorts each run `items[starts[v] - starts[0]..starts[v + 1] - starts[0]]`.
+fn sort_runs(starts: &[u32], items: &mut [(u64, u32)], halves: bool) {
+    if halves && items.len() >= HALVES_FROM {
+        let base = starts[0];
+        // The first vertex whose run starts at or past the middle.
+        let mid = starts.partition_point(|&s| ((s - base) as usize) < items.len() / 2);
+        if mid > 0 && mid < starts.len() - 1 {
+            let (left, right) = items.split_at_mut((starts[mid] - base) as usize);
+            rayon::join(
+                || sort_runs(&starts[..=mid], left, false),
+                || sort_runs(&starts[mid..], right, false),
+            );
+            return;
+        }
+    }
+    let base = starts[0];
+    for w in starts.windows(2) {
+        let run = &mut items[(w[0] - base) as usize..(w[1] - base) as usize];
         if run.len() > INSERTION_RUN {
             run.sort_unstable();
         } else {
@@ -77,7 +102,6 @@ pub(super) fn sort_by_edge(keyed: &[(u64, u32)], vertex_count: usize) -> Buckets
             }
         }
     }
-    sorted
 }
 
 #[cfg(test)]
@@ -106,5 +130,32 @@ mod tests {
         let mut expected = keyed.clone();
         expected.sort_unstable();
         assert_eq!(sort_by_edge(&keyed, 5).items, expected);
+    }
+
+    /// The runs sorted in two halves (one per thread) are the runs sorted in one pass: a soup
+    /// large enough to split, with long runs (sorted by the general sort) and short ones.
+    #[test]
+    fn runs_sorted_in_halves_are_sorted_as_one() {
+        let mut next = crate::hash::test_support::lcg(5);
+        let n = 3 * HALVES_FROM;
+        let keyed: Vec<(u64, u32)> = (0..n)
+            .map(|i| {
+                let a = (next() >> 40) as u32 % 2000;
+                let b = if i % 7 == 0 {
+                    3
+                } else {
+                    (next() >> 40) as u32 % 5000
+                };
+                (undirected(a, b), (i as u32) << 1 | u32::from(a > b))
+            })
+            .collect();
+        let mut expected = keyed.clone();
+        expected.sort_unstable();
+        let mut sorted = buckets(5000, keyed.iter().map(|&e| ((e.0 >> 32) as usize, e)));
+        sort_runs(&sorted.starts, &mut sorted.items, true);
+        assert_eq!(sorted.items, expected);
+        let mut serial = buckets(5000, keyed.iter().map(|&e| ((e.0 >> 32) as usize, e)));
+        sort_runs(&serial.starts, &mut serial.items, false);
+        assert_eq!(serial.items, expected);
     }
 }
