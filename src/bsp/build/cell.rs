@@ -78,7 +78,15 @@ pub(super) fn wrap_plane(ids: &Ids, arena: &Arena, eps: f64) -> Option<Plane> {
     let (low, high) = (bbox.min - 4.0 * eps, bbox.max + 4.0 * eps);
     let (mut below, mut above) = ([0usize; 3], [0usize; 3]);
     let (mut below_edge, mut above_edge) = ([f64::NEG_INFINITY; 3], [f64::INFINITY; 3]);
-    for &i in &ids.far {
+    // The count a side needs; once no side can reach it with the far polygons left, none will.
+    let need = ids.len().div_ceil(2);
+    for (k, &i) in ids.far.iter().enumerate() {
+        if k % 32 == 0 {
+            let most = below.iter().chain(&above).copied().max().unwrap_or(0);
+            if most + (ids.far.len() - k) < need {
+                return None;
+            }
+        }
         let b = &arena.boxes[i as usize];
         for axis in 0..3 {
             if b.max[axis] < low[axis] {
