@@ -287,8 +287,8 @@ fn crossing(poly: &Polygon, origin: DVec3, dir: DVec3, eps: f64) -> Crossing {
             continue;
         }
         let side = edge.cross(hit - a).dot(plane.normal) / len;
-        // An edge running back along a neighbour (a spike of no area) has its inner side
-        // outward too, however long: one 6.2e-12 long (5.5 tolerances, two cut points on one
+        // An edge up to a weld long running back along a neighbour (a spike of no area) has
+        // its inner side outward too: one 6.2e-12 long (5.5 tolerances, two cut points on one
         // edge) put a box's face beyond the hit, and a ray out of the box read one crossing
         // short (a face of the other operand lying in a gap labelled inside and dropped: the
         // solid's polygons open by 7.8e-3, its volume 1.1e-3 off its mesh's). Skipped as the
@@ -307,15 +307,24 @@ fn crossing(poly: &Polygon, origin: DVec3, dir: DVec3, eps: f64) -> Crossing {
     }
 }
 
-/// Whether the edge `edge` (of length `len`) from corner `i` of the ring `v` runs back along
-/// the edge before or after it, no longer than it and within `eps` of its line.
+/// Spikes up to this many tolerances long are skipped (a weld: corners nearer are one point).
+const SPIKE_TOLERANCES: f64 = 8.0;
+
+/// Whether the edge `edge` (of length `len`) from corner `i` of the ring `v` is a spike: at
+/// most [`SPIKE_TOLERANCES`] long, running back along the edge before or after it, which is
+/// longer than that (so is never skipped itself: a sliver's long sides still bound it), its
+/// far end within `eps` of that edge's line.
 fn turns_back(edge: DVec3, len: f64, v: &[DVec3], i: usize, eps: f64) -> bool {
+    let spike = SPIKE_TOLERANCES * eps;
+    if len > spike {
+        return false;
+    }
     let n = v.len();
     let before = v[i] - v[(i + n - 1) % n];
     let after = v[(i + 2) % n] - v[(i + 1) % n];
     [before, after].into_iter().any(|m| {
         let m_len = m.length();
-        m.dot(edge) < 0.0 && m_len >= len && m.cross(edge).length() <= eps * m_len
+        m.dot(edge) < 0.0 && m_len > spike && m.cross(edge).length() <= eps * m_len
     })
 }
 
