@@ -235,7 +235,7 @@ fn scene_with_a_hole_thinner_than_rounding() {
 /// slits where one point was computed twice 2.4·10⁻¹⁰ apart; the wider weld that joins them
 /// drags the edges at that point, and the vertex lay within reach of the edge as computed, not
 /// as dragged. Closed since the T-junction search allows an edge the distance a wide weld
-/// moved its ends (`mesh/repair/mod.rs`, `wide_drag`).
+/// moved its ends (`mesh/repair/pass.rs`, `wide_drag`).
 #[test]
 fn scene_bsp_route_crack_where_a_bake_meets_four_cuts() {
     for name in ["bsp_6", "bsp_7"] {

@@ -5,7 +5,8 @@
 use glam::DVec3;
 
 use super::discs::one_disc;
-use super::{regions, rings_of, shells, tjunction};
+use super::pass::rings_of;
+use super::{regions, shells, tjunction};
 use crate::geom::is_zero_area;
 use crate::mesh::Mesh;
 use crate::mesh::needles::KnownAreas;

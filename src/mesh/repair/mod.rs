@@ -10,7 +10,7 @@
 //! 3. **Regions**: edge-adjacent polygons of one source in one plane merge; their shared edges
 //!    cancel, leaving each region's boundary. A vertex that only passes straight through on
 //!    every boundary it lies on is dropped from all of them at once, so neighbours stay matched
-//!    ([`regions`]).
+//!    ([`regions`], [`straight`]).
 //! 4. **Triangulate** each region by constrained Delaunay triangulation of its boundary: no
 //!    zero-area triangles, no new vertices (`mesh::triangulate`). A region whose boundary crosses
 //!    itself keeps its polygons instead.
@@ -21,6 +21,9 @@
 //!    pair encloses solid) and every vertex is split into one copy per fan of triangles around
 //!    it. Solids touching along an edge or at a vertex come out as separate manifold shells
 //!    ([`shells`]).
+//!
+//! One pass runs these steps ([`pass`]); this module chooses which passes run (wider welds
+//! around cracks, the flat fill) and which one's mesh is kept.
 
 mod buckets;
 mod cracks;
@@ -29,9 +32,11 @@ mod edges;
 mod fins;
 mod grid;
 mod indexed;
+mod pass;
 mod regions;
 mod runs;
 mod shells;
+mod straight;
 mod thin;
 mod tjunction;
 
@@ -42,9 +47,10 @@ use glam::DVec3;
 use smallvec::SmallVec;
 
 use super::Mesh;
-use super::weld::{Wide, weld_within};
+use super::weld::Wide;
 use crate::geom::Tolerance;
-use crate::polygon::{Polygon, dedup_ring};
+use crate::polygon::Polygon;
+use pass::{measured_repair, repair};
 
 pub(crate) use indexed::Indexed;
 
@@ -186,7 +192,7 @@ fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (M
             break;
         }
         // Only where the weld alone leaves cracks are edges allowed their drag (see
-        // [`wide_drag`]): allowed always, it joined Havocglass8_left − _right's vertices to
+        // [`pass::wide_drag`]): allowed always, it joined Havocglass8_left − _right's vertices to
         // edges they are not on, a flat shell where the weld alone closes the mesh.
         let (mesh, left, swept) = measured_repair(polygons, delta, &wide, false, true);
         passes += 1;
@@ -225,7 +231,7 @@ pub(crate) fn indexed_pass_closes(polygons: &[Polygon], eps: f64, index: &Indexe
 }
 
 /// How many first welds (`delta`) times the polygons' area a pass after the first may sweep
-/// (see [`swept_beyond`]): the first weld itself moves corners by up to `delta`.
+/// (see [`pass::swept_beyond`]): the first weld itself moves corners by up to `delta`.
 const SWEPT_WELDS: f64 = 4.0;
 
 /// The part of the polygons' volume a pass after the first may sweep besides: the volume a
@@ -235,9 +241,9 @@ const SWEPT_RELATIVE: f64 = 1e-9;
 /// The best repair pass so far: a closed 2-manifold if any, else the one with fewest cracks.
 ///
 /// A pass with a wider weld is taken as clean only where the volume its weld sweeps
-/// ([`swept_beyond`]) is within what the first weld explains: [`SWEPT_WELDS`] × `delta` × the
-/// polygons' area, plus [`SWEPT_RELATIVE`] of their volume. A wider weld is for one point
-/// computed two ways a little apart, and sweeps next to nothing. Where it instead pulls the
+/// ([`pass::swept_beyond`]) is within what the first weld explains: [`SWEPT_WELDS`] ×
+/// `delta` × the polygons' area, plus [`SWEPT_RELATIVE`] of their volume. A wider weld is for
+/// one point computed two ways a little apart, and sweeps next to nothing. Where it instead pulls the
 /// two sides of a real feature thinner than its reach onto each other, it sweeps the feature:
 /// a cube less itself turned 1e-6° about its diagonal is six wedges up to 1e-8 thick, which a
 /// weld 1.4e-7 wide flattened into flat shells, dropped: an empty mesh, "closed" (at 2e-6° and
@@ -292,182 +298,6 @@ impl Attempt {
             (self.mesh, self.cracks) = (mesh, cracks);
         }
     }
-}
-
-/// One repair pass with weld tolerance `delta` (wider near the `wide` points); `quick` skips the
-/// T-junction search on edges already matched (see [`tjunction::insert_on_edges`]); with
-/// `dragged`, edges whose ends a wide weld moved take vertices that much farther (see
-/// [`wide_drag`]); with `fill_flat`, crack loops within that distance of one plane are filled
-/// before the shells are split. Returns the mesh and the end points of its cracks.
-fn repair(
-    polygons: &[Polygon],
-    delta: f64,
-    wide: &Wide,
-    quick: bool,
-    dragged: bool,
-    fill_flat: Option<f64>,
-) -> (Mesh, Vec<DVec3>) {
-    let (mesh, cracks, _) = pass(polygons, delta, wide, quick, dragged, fill_flat, false);
-    (mesh, cracks)
-}
-
-/// [`repair`] without filling, and the volume its weld sweeps beyond `delta` (see
-/// [`swept_beyond`]).
-fn measured_repair(
-    polygons: &[Polygon],
-    delta: f64,
-    wide: &Wide,
-    quick: bool,
-    dragged: bool,
-) -> (Mesh, Vec<DVec3>, f64) {
-    pass(polygons, delta, wide, quick, dragged, None, true)
-}
-
-/// [`repair`]; with `measure`, also the volume its weld sweeps beyond `delta` (else 0).
-fn pass(
-    polygons: &[Polygon],
-    delta: f64,
-    wide: &Wide,
-    quick: bool,
-    dragged: bool,
-    fill_flat: Option<f64>,
-    measure: bool,
-) -> (Mesh, Vec<DVec3>, f64) {
-    // Sized first: collecting a flat map grows the list by copying (10⁶ corners).
-    let mut corners: Vec<DVec3> =
-        Vec::with_capacity(polygons.iter().map(|p| p.vertices().len()).sum());
-    for p in polygons {
-        corners.extend_from_slice(p.vertices());
-    }
-    let (positions, map) = weld_within(&corners, delta, wide);
-    let swept = if measure {
-        swept_beyond(polygons, &corners, &positions, &map, delta)
-    } else {
-        0.0
-    };
-    let drag = if dragged {
-        wide_drag(&corners, &positions, &map, delta, wide)
-    } else {
-        Vec::new()
-    };
-    let mut rings = rings_of(polygons, &map, &positions, delta, 0);
-    let known = tjunction::insert_on_edges(&positions, &drag, &mut rings, delta, wide, quick, &[]);
-    let pinned = vec![false; positions.len()];
-    let mut triangles =
-        regions::triangulate_regions(&positions, &rings, polygons, delta, &pinned, known);
-    let mut filled_from = triangles.0.len();
-    if let Some(flat) = fill_flat {
-        filled_from -= cracks::close_flat_cracks(&positions, &mut triangles, flat);
-    }
-    let (mut mesh, cracks) =
-        shells::split_into_shells(positions, triangles, &mut filled_from, delta);
-    thin::drop_thin_shells(&mut mesh, delta, filled_from);
-    (mesh, cracks, swept)
-}
-
-/// The volume a weld sweeps by moving corners farther than `delta`, bounded from above: per
-/// polygon, its area times the largest such move across its plane.
-///
-/// A wider weld is for one point computed two ways: where faces cross at a tiny angle, the two
-/// computations differ along the line where they cross, which lies in every face at the point,
-/// so the move sweeps next to nothing. Pulling the two sides of a wedge thinner than the reach
-/// onto each other moves its corners across its faces: it sweeps the wedge.
-fn swept_beyond(
-    polygons: &[Polygon],
-    corners: &[DVec3],
-    positions: &[DVec3],
-    map: &[u32],
-    delta: f64,
-) -> f64 {
-    let mut swept = 0.0;
-    let mut at = 0;
-    for p in polygons {
-        let n = p.vertices().len();
-        let normal = p.plane().normal;
-        let mut most: f64 = 0.0;
-        for k in at..at + n {
-            let moved = positions[map[k] as usize] - corners[k];
-            if moved.length() > delta {
-                most = most.max(moved.dot(normal).abs());
-            }
-        }
-        at += n;
-        if most > 0.0 {
-            swept += most * p.area().abs();
-        }
-    }
-    swept
-}
-
-/// Per welded vertex, how far a wider weld than `delta` moved a corner onto it (0 where none
-/// did); empty when nothing is widened.
-///
-/// A wide weld drags every edge at that corner with it: a vertex that lay within `delta` of
-/// the edge's middle as computed can then be up to the drag farther from it (bsp_6: welding
-/// two computations of one point 2.4·10⁻¹⁰ apart left a vertex 0.07 along the edge 1.15·10⁻¹⁰
-/// off it, 3.6 weld distances, and a new slit). The T-junction search allows each edge its
-/// ends' drag on top of the reach ([`tjunction::insert_on_edges`]). Ordinary welds move
-/// corners by at most `delta` and add nothing, so the first pass is unchanged.
-fn wide_drag(
-    corners: &[DVec3],
-    positions: &[DVec3],
-    map: &[u32],
-    delta: f64,
-    wide: &Wide,
-) -> Vec<f64> {
-    if wide.widest(delta) <= delta {
-        return Vec::new();
-    }
-    let mut drag = vec![0.0f64; positions.len()];
-    for (&c, &v) in corners.iter().zip(map) {
-        let moved = c.distance(positions[v as usize]);
-        if moved > delta {
-            drag[v as usize] = drag[v as usize].max(moved);
-        }
-    }
-    drag
-}
-
-/// The rings of `polygons` through the weld `map` of their corners in order, numbered from
-/// `first`; rings that welding emptied or flattened (see [`spans_area`]) are left out.
-fn rings_of(
-    polygons: &[Polygon],
-    map: &[u32],
-    positions: &[DVec3],
-    delta: f64,
-    first: usize,
-) -> Vec<Ring> {
-    let mut rings = Vec::with_capacity(polygons.len());
-    let mut at = 0usize;
-    for (i, p) in polygons.iter().enumerate() {
-        let n = p.vertices().len();
-        let mut verts: SmallVec<[u32; 8]> = map[at..at + n].iter().copied().collect();
-        at += n;
-        dedup_ring(&mut verts);
-        if verts.len() >= 3 && spans_area(positions, &verts, p, delta) {
-            rings.push(Ring {
-                verts,
-                polygon: (first + i) as u32,
-            });
-        }
-    }
-    rings
-}
-
-/// False when welding collapsed the ring onto a line (width below `delta` everywhere).
-fn spans_area(positions: &[DVec3], verts: &[u32], polygon: &Polygon, delta: f64) -> bool {
-    let n = polygon.plane().normal;
-    let at = |k: usize| positions[verts[k] as usize];
-    let first = at(0);
-    // Twice the area over the longest edge bounds the ring's width from below.
-    let mut twice_area = 0.0;
-    let mut longest: f64 = 0.0;
-    for i in 0..verts.len() {
-        let (a, b) = (at(i), at((i + 1) % verts.len()));
-        twice_area += (a - first).cross(b - first).dot(n);
-        longest = longest.max(a.distance(b));
-    }
-    longest > 0.0 && twice_area / longest > delta * 1e-3
 }
 
 #[cfg(test)]
