@@ -1086,6 +1086,17 @@ fn the_round_20_fork_run_inputs_that_pass() {
 }
 
 /// Every other input of the round-20 fork run, replayed; the failures listed.
+///
+/// Traced, not fixed: 5919d466 (step 3 open) is two touching sheets whose triangles tie in
+/// angle about a crowded edge. It is minimised as
+/// `union_with_a_box_turned_1e_9_degrees_on_a_cylinder_s_top_pairs_the_touching_sheets`.
+/// 0a15665e (an OBJ bar turned 1e-2° ∪ an OBJ box turned 1e-3° ∪ a cuboid ∪ a 0.125 cube at
+/// their centre, less a slab whose faces are the cube's top and bottom) is open at step 3
+/// because of two lone triangles of about 2e-17, one at each of two opposite corners of the
+/// cube's top and bottom (z = −0.4375 and −0.5625). Neither has a neighbour. Each is bounded by
+/// the cube's two faces and by the line where the box turned 1e-3° crosses that plane
+/// (diagonal, at a sine of about 1.4e-5), 6.7e-9 on a side: a piece of a thin wedge whose
+/// other face the clip did not keep, not a repair defect; not traced to that clip decision.
 #[test]
 #[ignore = "open: near-coplanar — 15 inputs of round 20's fork run fail with tiny rotations on (4 not closed, 3 mesh volume off the solid's, 1 volume out of bounds, 7 needles), all pass with them off"]
 fn the_round_20_fork_run_near_coplanar_inputs() {
@@ -1106,6 +1117,41 @@ fn union_of_a_cube_a_slab_turned_1e_6_degrees_and_a_bar_leaves_no_flat_shell() {
         0x00, 0x00, 0x00, 0x08, 0x08, 0xd8, 0x01, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xa3, 0x00,
         0x40, 0x03, 0x03, 0x03, 0x30, 0xc4, 0x01, 0x3b, 0xca, 0x50, 0x00, 0x00, 0xf1, 0x00, 0x00,
         0x00, 0x00, 0x00, 0x09, 0x00,
+    ]);
+}
+
+/// The round-20 fork run's 5919d466 cut to three of its five operands (its 0, 1 and 3): a
+/// cylinder (radius 0.6875, 8 segments) ∪ a 0.125 × 0.5 × 1.125 cuboid ∪ a 1.375 × 0.5 × 1.125
+/// cuboid turned 1e-9° whose bottom lies on the cylinder's top (y = −0.25), up to 1.5e-11 above
+/// it over the contact: two shells touching across a gap thinner than the weld. Step 1 is open
+/// (107 edges, 4 boundary edges, one position given two vertex ids).
+///
+/// Traced on 5919d466 itself (step 3, after a slab is cut away; 4 boundary edges, one position
+/// given three ids): the two touching faces weld onto each other along the crowded edges where
+/// the slab's cut face meets them (`split_into_shells` in `mesh/repair/shells.rs`). Each
+/// crowded edge's triangles are sorted by the angle of their far corner about it, good only to
+/// the weld over that corner's distance. The turned face's triangle reaches to a corner past
+/// where the faces cross (1.5e-11 below the other face). Its edge is welded down onto the other
+/// face, which takes away the 4e-12 … 8.4e-12 it lies above, so it read 2.3e-11 rad below
+/// the other sheet (the noise there is 4.8e-11). Two half-edges of one direction then sit side
+/// by side, `pair_around` pairs neither, and the vertex splits into copies whose edges have no
+/// twin. In this cut the two triangles tie exactly.
+///
+/// Swapping two neighbours of opposite direction within that noise, where that makes the
+/// edge's triangles alternate, closes both (and 5919d466, nothing else of the fork runs changed;
+/// branch `forks28a-fix`). But it breaks two unit tests in `mesh/repair/mod.rs`: a 32×16
+/// sphere less itself turned 1e-6° comes out with a non-manifold edge, and the 16×8 one at
+/// 1e-6° closes after 4 passes, not 5 or more. Slivers of two operands crossing on an edge
+/// also tie there, and their order is not a gap's, so the swap needs a test that tells a gap
+/// between two shells from such a crossing before it can go in.
+#[test]
+#[ignore = "open: not closed — step 1 has 4 boundary edges: the triangles of two touching sheets, welded onto each other, tie in angle about a crowded edge and do not alternate"]
+fn union_with_a_box_turned_1e_9_degrees_on_a_cylinder_s_top_pairs_the_touching_sheets() {
+    replay(&[
+        0xe7, 0xee, 0xe7, 0x4a, 0xf3, 0x5f, 0xc9, 0x1b, 0x64, 0x00, 0x41, 0x00, 0x00, 0x00, 0x00,
+        0x00, 0x60, 0x00, 0x00, 0xb7, 0x98, 0x01, 0x00, 0x42, 0xf8, 0xfc, 0xd9, 0x00, 0x00, 0x08,
+        0x00, 0x08, 0x00, 0x00, 0x8c, 0x8e, 0xb7, 0x98, 0x2e, 0x15, 0xea, 0xe7, 0x50, 0x07, 0x20,
+        0x8e, 0xd0, 0x2a, 0x98, 0x82,
     ]);
 }
 
