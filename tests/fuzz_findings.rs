@@ -1062,20 +1062,28 @@ fn the_crossing_line_band_leaves_a_flat_shell() {
 /// crossing and labelled the piece inside. The bar's face over the notch (7.78e-3) was
 /// dropped: the volume gap is that area times its lever (0.41) over 3.
 ///
+/// 2d7b59dd, 6a886bb6, 75be2603 and 9d46e77d (step 0, 0, 0 and 2: closed, one tetrahedron of
+/// volume 7.3e-17, 4.5e-19, 7.0e-16 and 1.3e-16 with a needle at its end): each an
+/// intersection of an exact box with a box or cylinder turned 1e-5° whose face or edge lay on
+/// the box's, a real wedge a hair deep. The needle pass deleted the tetrahedron and put it back
+/// (the drop was all the mesh's volume); the mesh is now empty (minimised as
+/// `intersection_of_a_box_and_a_cylinder_turned_1e_5_degrees_on_its_top_drops_its_tetrahedron`).
+///
 /// Also passing since the changes named at [`FORK_PASSING`]: the inputs not named above.
-const FORK_20_PASSING: [&str; 93] = [
+const FORK_20_PASSING: [&str; 97] = [
     "04880fb6", "060752d1", "0bebd350", "1194b103", "12758e1c", "12bcee43", "1d6b6b28", "1d7d9f8a",
-    "1f854764", "20254c75", "22568913", "22b67390", "24057533", "25a6e85f", "2a7dd67a", "2f1db746",
-    "394fbf5b", "3ecaaeed", "42b00a8c", "43f8dc80", "44bbfb06", "45e7cb01", "4b6fae9d", "4dba1202",
-    "50f56fc8", "52a63048", "53fd6805", "54ad2229", "5927f563", "5ba8f6ed", "5be20e4a", "5f7ef5a2",
-    "60e1b472", "6c1d9139", "6c2460ab", "74027838", "778ac30a", "78085500", "79dd0a25", "7d6886ee",
-    "7eb5e225", "7ee590be", "7f2fbc81", "7f88a284", "8116c238", "822b0d3d", "83b87dcb", "84cb559e",
-    "84ce80c0", "87f26b5a", "8936dbd6", "8dea14d6", "91c935ab", "94d83441", "9530713d", "9679585b",
-    "97cf8f64", "98725c3d", "9ace493f", "a30a743f", "a3a7185f", "aaf8bd05", "ad644dcd", "afdfb2bf",
-    "b07b43ca", "b770c958", "c095e8fc", "c287ef50", "c724056e", "c9724cd5", "c9f5e09e", "c9f9a708",
-    "ce00c570", "d116749a", "d3147b45", "d642c6e2", "d6f045bf", "d8a85c01", "dcbd5cd9", "de6a214f",
-    "df3549fa", "e02e0760", "e0c0778c", "e9c633a3", "ea147c0f", "eb2498a7", "ebb7181c", "edf27eb0",
-    "ef943716", "f385f178", "fa3003dd", "fc4b5873", "fe9275bb",
+    "1f854764", "20254c75", "22568913", "22b67390", "24057533", "25a6e85f", "2a7dd67a", "2d7b59dd",
+    "2f1db746", "394fbf5b", "3ecaaeed", "42b00a8c", "43f8dc80", "44bbfb06", "45e7cb01", "4b6fae9d",
+    "4dba1202", "50f56fc8", "52a63048", "53fd6805", "54ad2229", "5927f563", "5ba8f6ed", "5be20e4a",
+    "5f7ef5a2", "60e1b472", "6a886bb6", "6c1d9139", "6c2460ab", "74027838", "75be2603", "778ac30a",
+    "78085500", "79dd0a25", "7d6886ee", "7eb5e225", "7ee590be", "7f2fbc81", "7f88a284", "8116c238",
+    "822b0d3d", "83b87dcb", "84cb559e", "84ce80c0", "87f26b5a", "8936dbd6", "8dea14d6", "91c935ab",
+    "94d83441", "9530713d", "9679585b", "97cf8f64", "98725c3d", "9ace493f", "9d46e77d", "a30a743f",
+    "a3a7185f", "aaf8bd05", "ad644dcd", "afdfb2bf", "b07b43ca", "b770c958", "c095e8fc", "c287ef50",
+    "c724056e", "c9724cd5", "c9f5e09e", "c9f9a708", "ce00c570", "d116749a", "d3147b45", "d642c6e2",
+    "d6f045bf", "d8a85c01", "dcbd5cd9", "de6a214f", "df3549fa", "e02e0760", "e0c0778c", "e9c633a3",
+    "ea147c0f", "eb2498a7", "ebb7181c", "edf27eb0", "ef943716", "f385f178", "fa3003dd", "fc4b5873",
+    "fe9275bb",
 ];
 
 /// The inputs of the round-20 fork run that pass now ([`FORK_20_PASSING`]).
@@ -1098,7 +1106,7 @@ fn the_round_20_fork_run_inputs_that_pass() {
 /// (diagonal, at a sine of about 1.4e-5), 6.7e-9 on a side: a piece of a thin wedge whose
 /// other face the clip did not keep, not a repair defect; not traced to that clip decision.
 #[test]
-#[ignore = "open: near-coplanar — 15 inputs of round 20's fork run fail with tiny rotations on (4 not closed, 3 mesh volume off the solid's, 1 volume out of bounds, 7 needles), all pass with them off"]
+#[ignore = "open: near-coplanar — 11 inputs of round 20's fork run fail with tiny rotations on (4 not closed, 3 mesh volume off the solid's, 1 volume out of bounds, 3 needles), all pass with them off"]
 fn the_round_20_fork_run_near_coplanar_inputs() {
     assert_fork_run_passes("round20_fork", 108, &FORK_20_PASSING);
 }
@@ -1256,4 +1264,44 @@ fn union_with_a_box_turned_7_7e_4_rad_keeps_a_needle() {
         ],
         false,
     );
+}
+
+/// The round-20 fork run's 2d7b59dd cut after its step 0 (33 bytes): a cylinder (radius 0.25,
+/// 0.75 long, 8 sides) turned 1e-5° about an oblique axis, whose lower side edge lay on the
+/// top of a 0.625 × 1.5 × 0.5 box, ∩ that box. Turned, the edge dips into the box by up to
+/// 1.6e-8: the intersection is a tetrahedron 0.375 long, 7.5e-8 × 1.6e-8 across at its end,
+/// of volume 7.3e-17 (the solid's, exactly the wedge's). Its end triangle (area 5.9e-16) is a
+/// speck of its shell (10⁻¹² d² = 1.4e-13), which no operation removes without opening the
+/// shell. The needle pass deleted the tetrahedron whole (volume below 10⁻¹² d³/3) and then put
+/// it back: the guard held the drop to 1 % of the mesh's volume, of which it was all. Where
+/// every shell is deleted whole the guard now lets the mesh go empty, and
+/// `Solid::check_mesh_volume` allows what such a drop may take (`NEEDLE_AREA · d³`), so the
+/// command line writes the empty mesh. Round 20's 6a886bb6, 75be2603 and 9d46e77d were the
+/// same: an intersection one tetrahedron of needles.
+#[test]
+fn intersection_of_a_box_and_a_cylinder_turned_1e_5_degrees_on_its_top_drops_its_tetrahedron() {
+    let input = [
+        0xff, 0xff, 0x1d, 0x08, 0xd7, 0xd7, 0x9d, 0xd7, 0x2b, 0x28, 0x28, 0x28, 0x28, 0x01, 0x03,
+        0x28, 0x28, 0x28, 0x28, 0xd7, 0x03, 0x00, 0x00, 0x00, 0xfe, 0xff, 0xff, 0xff, 0x00, 0x00,
+        0x00, 0x00, 0x00,
+    ];
+    replay(&input);
+    // The same operands built here, through the checked mesh the command line writes.
+    let unit = |lo: u8, hi: u8| u16::from_le_bytes([lo, hi]) as f64 / 65535.0 - 0.5;
+    let axis = bspcsg::glam::DVec3::new(unit(0xd7, 0x9d), unit(0xd7, 0x2b), unit(0x28, 0x28));
+    let turn = bspcsg::glam::DQuat::from_axis_angle(axis.normalize(), 1e-5f64.to_radians());
+    let cylinder = bspcsg::Solid::cylinder(0.25, 0.75, 8)
+        .unwrap()
+        .rotate(turn)
+        .unwrap()
+        .translate(bspcsg::glam::DVec3::new(-0.4375, -0.3125, 0.0))
+        .unwrap();
+    let block = bspcsg::Solid::cuboid(bspcsg::glam::DVec3::new(0.625, 1.5, 0.5))
+        .unwrap()
+        .translate(bspcsg::glam::DVec3::splat(-0.5))
+        .unwrap();
+    let sliver = &cylinder & &block;
+    assert!(sliver.volume() > 0.0 && sliver.volume() < 1e-16);
+    let mesh = sliver.to_checked_mesh().unwrap();
+    assert!(mesh.is_empty(), "{}", mesh.report());
 }
