@@ -1052,6 +1052,16 @@ fn the_crossing_line_band_leaves_a_flat_shell() {
 /// 5927f563 and b07b43ca (the solid's volume outside its bounds; 3ecaaeed and 5927f563 united
 /// a flat remnant of 7.1e-16 with a cube and lost 3.4e-6 of it).
 ///
+/// 9ace493f (a 0.25 × 0.125 × 1.125 box less a 0.125 cube turned 1e-5° at its end, leaving a
+/// notch open on the face x = −0.5625 over half its width; ∪ a bar far off; ∪ a 0.125 bar
+/// filling the notch: step 3 the solid 1.07e-3 below its mesh, which was right) since a ray's
+/// crossing test skips an edge running back along its neighbour (`turns_back` in
+/// `bsp/surface/ray.rs`): the box's face y = −0.4375, cut at two points 6.2e-12 apart on its
+/// edge x = −0.5625, had a spike there, and a ray from 2 tolerances outside the box (the
+/// filling bar's face piece over the notch, routed along the box's face) missed it, read one
+/// crossing and labelled the piece inside. The bar's face over the notch (7.78e-3) was
+/// dropped: the volume gap is that area times its lever (0.41) over 3.
+///
 /// 2d7b59dd, 6a886bb6, 75be2603 and 9d46e77d (step 0, 0, 0 and 2: closed, one tetrahedron of
 /// volume 7.3e-17, 4.5e-19, 7.0e-16 and 1.3e-16 with a needle at its end): each an
 /// intersection of an exact box with a box or cylinder turned 1e-5° whose face or edge lay on
@@ -1060,7 +1070,7 @@ fn the_crossing_line_band_leaves_a_flat_shell() {
 /// `intersection_of_a_box_and_a_cylinder_turned_1e_5_degrees_on_its_top_drops_its_tetrahedron`).
 ///
 /// Also passing since the changes named at [`FORK_PASSING`]: the inputs not named above.
-const FORK_20_PASSING: [&str; 96] = [
+const FORK_20_PASSING: [&str; 97] = [
     "04880fb6", "060752d1", "0bebd350", "1194b103", "12758e1c", "12bcee43", "1d6b6b28", "1d7d9f8a",
     "1f854764", "20254c75", "22568913", "22b67390", "24057533", "25a6e85f", "2a7dd67a", "2d7b59dd",
     "2f1db746", "394fbf5b", "3ecaaeed", "42b00a8c", "43f8dc80", "44bbfb06", "45e7cb01", "4b6fae9d",
@@ -1068,11 +1078,12 @@ const FORK_20_PASSING: [&str; 96] = [
     "5f7ef5a2", "60e1b472", "6a886bb6", "6c1d9139", "6c2460ab", "74027838", "75be2603", "778ac30a",
     "78085500", "79dd0a25", "7d6886ee", "7eb5e225", "7ee590be", "7f2fbc81", "7f88a284", "8116c238",
     "822b0d3d", "83b87dcb", "84cb559e", "84ce80c0", "87f26b5a", "8936dbd6", "8dea14d6", "91c935ab",
-    "94d83441", "9530713d", "9679585b", "97cf8f64", "98725c3d", "9d46e77d", "a30a743f", "a3a7185f",
-    "aaf8bd05", "ad644dcd", "afdfb2bf", "b07b43ca", "b770c958", "c095e8fc", "c287ef50", "c724056e",
-    "c9724cd5", "c9f5e09e", "c9f9a708", "ce00c570", "d116749a", "d3147b45", "d642c6e2", "d6f045bf",
-    "d8a85c01", "dcbd5cd9", "de6a214f", "df3549fa", "e02e0760", "e0c0778c", "e9c633a3", "ea147c0f",
-    "eb2498a7", "ebb7181c", "edf27eb0", "ef943716", "f385f178", "fa3003dd", "fc4b5873", "fe9275bb",
+    "94d83441", "9530713d", "9679585b", "97cf8f64", "98725c3d", "9ace493f", "9d46e77d", "a30a743f",
+    "a3a7185f", "aaf8bd05", "ad644dcd", "afdfb2bf", "b07b43ca", "b770c958", "c095e8fc", "c287ef50",
+    "c724056e", "c9724cd5", "c9f5e09e", "c9f9a708", "ce00c570", "d116749a", "d3147b45", "d642c6e2",
+    "d6f045bf", "d8a85c01", "dcbd5cd9", "de6a214f", "df3549fa", "e02e0760", "e0c0778c", "e9c633a3",
+    "ea147c0f", "eb2498a7", "ebb7181c", "edf27eb0", "ef943716", "f385f178", "fa3003dd", "fc4b5873",
+    "fe9275bb",
 ];
 
 /// The inputs of the round-20 fork run that pass now ([`FORK_20_PASSING`]).
@@ -1095,7 +1106,7 @@ fn the_round_20_fork_run_inputs_that_pass() {
 /// (diagonal, at a sine of about 1.4e-5), 6.7e-9 on a side: a piece of a thin wedge whose
 /// other face the clip did not keep, not a repair defect; not traced to that clip decision.
 #[test]
-#[ignore = "open: near-coplanar — 12 inputs of round 20's fork run fail with tiny rotations on (4 not closed, 4 mesh volume off the solid's, 1 volume out of bounds, 3 needles), all pass with them off"]
+#[ignore = "open: near-coplanar — 11 inputs of round 20's fork run fail with tiny rotations on (4 not closed, 3 mesh volume off the solid's, 1 volume out of bounds, 3 needles), all pass with them off"]
 fn the_round_20_fork_run_near_coplanar_inputs() {
     assert_fork_run_passes("round20_fork", 108, &FORK_20_PASSING);
 }
