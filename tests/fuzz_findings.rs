@@ -654,7 +654,7 @@ fn mesh_volume_off_at_step_3_since_the_crossing_line_judgement() {
 /// Traced further (round 22): that first point, 3.3e-11 inside the box's −x face, was labelled
 /// by a segment from a point of the neighbouring cell outside it (right), which crosses that
 /// face running along it at 8.6e-10 rad; `crossing` took any plane within 1e-9 of the
-/// direction for parallel and the crossing for a miss. Counted now (`bsp/surface/ray.rs`): passes.
+/// direction for parallel and the crossing for a miss. Counted now (`bsp/surface/ray/mod.rs`): passes.
 #[test]
 fn nicked_box_less_a_slab_turned_1e_6_degrees() {
     replay_file("nicked_box_less_slab_turned_1e-6");
@@ -752,7 +752,7 @@ fn replay_fork(hash: &str) {
 /// labelling a point judges no polygon edge within the tolerance long: the last union kept
 /// pieces of the cube's faces lying in the bar's, labelled outside from two tolerances inside
 /// the bar by a ray whose exit face's ring turned back by one ulp at a corner (`crossing` in
-/// `bsp/surface/ray.rs`; minimised in `robustness.rs`,
+/// `bsp/surface/ray/mod.rs`; minimised in `robustness.rs`,
 /// `union_with_a_cube_inside_a_bar_beside_its_turned_twin_changes_nothing`). With it, round
 /// 20's edf27eb0 (a cylinder ∪ a bar turned 1e-3° ∪ the 0.125 cube three times, once an OBJ
 /// box: step 3 the solid 2.1e-5 above its mesh), not traced.
@@ -1017,7 +1017,7 @@ fn the_crossing_line_band_leaves_a_flat_shell() {
 ///
 /// 22b67390, 2a7dd67a and 97cf8f64 pass since a fragment routed along a face of the tree and
 /// labelled by a ray from two tolerances off it counts a face crossing that one at a small
-/// angle between the two points (`Surface::crossings_off` in `bsp/surface/ray.rs`): the point off
+/// angle between the two points (`Surface::crossings_off` in `bsp/surface/ray/mod.rs`): the point off
 /// the face lay beyond the other operand's nearly parallel face, 2.7e-13 away, and the
 /// fragment, inside by the band that cut it on their crossing line, read outside, while that
 /// face, outside the fragment's operand by the band, was dropped too (traced on round 18's
@@ -1056,7 +1056,7 @@ fn the_crossing_line_band_leaves_a_flat_shell() {
 /// notch open on the face x = −0.5625 over half its width; ∪ a bar far off; ∪ a 0.125 bar
 /// filling the notch: step 3 the solid 1.07e-3 below its mesh, which was right) since a ray's
 /// crossing test skips an edge running back along its neighbour (`turns_back` in
-/// `bsp/surface/ray.rs`): the box's face y = −0.4375, cut at two points 6.2e-12 apart on its
+/// `bsp/surface/ray/mod.rs`): the box's face y = −0.4375, cut at two points 6.2e-12 apart on its
 /// edge x = −0.5625, had a spike there, and a ray from 2 tolerances outside the box (the
 /// filling bar's face piece over the notch, routed along the box's face) missed it, read one
 /// crossing and labelled the piece inside. The bar's face over the notch (7.78e-3) was

@@ -438,7 +438,7 @@ fn grid_slabs_are_closed_with_volume_two() {
 /// bar's face x = −0.5625 and labelled by a ray from two tolerances inside it, read outside:
 /// the ray left through a face y = −0.4375 whose ring turned back by one ulp at a corner
 /// (x = −0.4375 + 1 ulp, then −0.4375), and that 5.5e-17 edge, judged as a boundary, put the
-/// hit outside the face (`crossing` in `bsp/surface/ray.rs` skips edges within the tolerance).
+/// hit outside the face (`crossing` in `bsp/surface/ray/mod.rs` skips edges within the tolerance).
 #[test]
 fn union_with_a_cube_inside_a_bar_beside_its_turned_twin_changes_nothing() {
     let at = |solid: Solid| solid.translate(DVec3::splat(-0.5)).unwrap();

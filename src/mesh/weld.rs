@@ -48,9 +48,15 @@ pub(crate) fn weld_exact(points: &[DVec3]) -> (Vec<DVec3>, Vec<u32>) {
 }
 
 fn weld_exact_serial(points: &[DVec3]) -> (Vec<DVec3>, Vec<u32>) {
+    let (exact, first) = welded(points);
+    (exact.positions, first)
+}
+
+/// The welder holding `points`' distinct positions, and each point's index in it.
+fn welded(points: &[DVec3]) -> (Welder, Vec<u32>) {
     let mut exact = Welder::with_capacity(points.len());
     let first: Vec<u32> = points.iter().map(|&p| exact.index(p)).collect();
-    (exact.positions, first)
+    (exact, first)
 }
 
 /// [`weld_exact`] with each half welded on its own thread, then merged: a position of the
@@ -60,12 +66,7 @@ fn weld_exact_serial(points: &[DVec3]) -> (Vec<DVec3>, Vec<u32>) {
 /// second half's new ones follow in the order the serial weld meets them).
 fn weld_exact_in_halves(points: &[DVec3]) -> (Vec<DVec3>, Vec<u32>) {
     let (a, b) = points.split_at(points.len() / 2);
-    let weld = |half: &[DVec3]| {
-        let mut w = Welder::with_capacity(half.len());
-        let first: Vec<u32> = half.iter().map(|&p| w.index(p)).collect();
-        (w, first)
-    };
-    let ((first_half, mut first), (second_half, second)) = rayon::join(|| weld(a), || weld(b));
+    let ((first_half, mut first), (second_half, second)) = rayon::join(|| welded(a), || welded(b));
     // Per distinct position of the second half: its index in the first half, or none.
     let mut renumber: Vec<u32> = second_half
         .positions

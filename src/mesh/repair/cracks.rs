@@ -320,18 +320,11 @@ mod tests {
     use glam::DVec3;
 
     use super::close_flat_cracks;
-    use crate::hash::FxHashMap;
+    use crate::topology::check_closed;
 
-    /// Whether every directed edge of `triangles` is used once, and once the other way.
+    /// Whether every edge of `triangles` is used once each way.
     fn closed(triangles: &[[u32; 3]]) -> bool {
-        let mut uses: FxHashMap<(u32, u32), u32> = FxHashMap::default();
-        for t in triangles {
-            for k in 0..3 {
-                *uses.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
-            }
-        }
-        uses.iter()
-            .all(|(&(a, b), &n)| n == 1 && uses.get(&(b, a)) == Some(&1))
+        check_closed(triangles).is_ok()
     }
 
     /// A slit in the flat top of a pyramid whose rim runs along two edges of a sliver ear
