@@ -26,10 +26,10 @@ impl Solid {
     /// [`MESH_VOLUME_RELATIVE`] of the larger, plus [`MESH_VOLUME_TOLERANCES`] tolerances times
     /// the polygons' area, plus what the polygons' own volume is unsure of where they do not
     /// close (slivers the repair drops: their area vectors' sum `F` moves it by up to
-    /// `|F| · d / 6` about points of their box of diagonal `d`), plus `NEEDLE_AREA · d³` (a
-    /// tetrahedral shell of needles the needle pass deletes whole). The last guard against a
-    /// wrong result: what the command line checks before writing a boolean's or a scene's
-    /// result, and [`Solid::to_checked_mesh`] before returning it. Two passes over the
+    /// `|F| · d / 6` about points of their box of diagonal `d`), plus `NEEDLE_AREA · d³` for an
+    /// empty mesh (tetrahedral shells of needles the needle pass deleted whole). The last guard
+    /// against a wrong result: what the command line checks before writing a boolean's or a
+    /// scene's result, and [`Solid::to_checked_mesh`] before returning it. Two passes over the
     /// polygons and two over the mesh's triangles: on rocker-arm ∪ moved, 10.7 M instructions,
     /// 0.7 % of the command line's run and a tenth of its [`Solid::to_mesh`].
     ///
@@ -62,9 +62,13 @@ impl Solid {
         let open = flux.length() * bbox.diagonal() / 6.0;
         // A tetrahedral shell the needle pass deletes whole holds below `NEEDLE_AREA · d³/3`,
         // `d` its own diagonal, at most the box's: where it was all the mesh had (an
-        // intersection of faces touching along a line, one turned a hair), 2 % of the rest
-        // does not cover it.
-        let tetrahedron = crate::geom::NEEDLE_AREA * bbox.diagonal().powi(3);
+        // intersection of faces touching along a line, one turned a hair), nothing is left
+        // for 2 % of the rest to cover it. Only an empty mesh gets this term.
+        let tetrahedron = if mesh.is_empty() {
+            crate::geom::NEEDLE_AREA * bbox.diagonal().powi(3)
+        } else {
+            0.0
+        };
         let bound = MESH_VOLUME_RELATIVE * polygons.abs().max(got.abs())
             + MESH_VOLUME_TOLERANCES * self.tolerance().eps() * area
             + open

@@ -200,9 +200,9 @@ pub(crate) fn remove_needles(
         };
         // The tetrahedra deleted whole (the last entry) against the whole mesh, as they go;
         // but where they were all the mesh had (every shell deleted whole), nothing is left
-        // whose volume the guard would keep: the whole result was slivers of needles, each
-        // below `NEEDLE_AREA · d³/3` by its own diagonal and within its `SPECK_MOVE · d` of a
-        // segment (an intersection of faces touching along a line, one turned 10⁻⁵°: a
+        // whose volume the guard would keep: the whole result was four-triangle shells with a
+        // needle face, each below `NEEDLE_AREA · d³/3` by its own diagonal (`drop_tetrahedron`;
+        // an intersection of faces touching along a line, one turned 10⁻⁵°: a
         // tetrahedron 0.375 long, 7.5·10⁻⁸ × 1.6·10⁻⁸ across, of 7.3·10⁻¹⁷; its end a speck).
         let emptied = work.shell_tris.iter().all(|&n| n == 0);
         if !emptied && beyond(shells, mesh_volume.abs(), mesh_area) {
