@@ -5,6 +5,7 @@
 
 pub mod cli;
 pub mod hostile;
+pub mod mesh_files;
 pub mod run;
 
 use std::path::PathBuf;
