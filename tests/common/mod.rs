@@ -6,6 +6,7 @@
 pub mod cli;
 pub mod hostile;
 pub mod mesh_files;
+pub mod mesh_input;
 pub mod run;
 
 use std::path::PathBuf;
