@@ -7,6 +7,7 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use super::far::{assemble, keep_far};
+use super::flat::is_flat_sheet;
 use super::vertex_ids::VertexIds;
 use super::{Overrun, PrecisionLoss, Solid};
 use crate::bsp::{Coplanar, FOCUS_MARGIN, Focus, Label, Meter, Surface, Tree};
@@ -271,6 +272,11 @@ fn boolean_at_least(
     // Both operands' cut points on three planes, two nearly parallel, made one point.
     share_near_parallel_vertices(&mut [&mut a_near, &mut b_near], eps);
     let (polygons, index) = assemble((a_far, a_near), (b_far, b_near), op == BoolOp::Difference);
+    // A flat closed sheet bounds nothing within the tolerance; passed on, a later boolean would
+    // keep one of its sides (see `flat.rs`).
+    if is_flat_sheet(&polygons, flat) {
+        return Solid::with_eps(Vec::new(), eps, lost);
+    }
     Solid::with_eps(polygons, eps, lost).with_index(index)
 }
 

@@ -12,6 +12,7 @@ mod boolean;
 mod checked;
 mod convert;
 mod far;
+mod flat;
 mod measure;
 mod ops;
 mod overlapping;
