@@ -209,8 +209,8 @@ impl Polygon {
                 back.push(p, Corner::cut(i));
             }
         }
-        let front = front.into_polygon(self, plane);
-        let back = back.into_polygon(self, plane);
+        let front = front.take_polygon(self, plane);
+        let back = back.take_polygon(self, plane);
         match (front, back) {
             (Some(front), Some(back)) => Split::Spanning { front, back },
             // Cut points rounded onto a vertex: all that is left on one side is a line.
@@ -283,7 +283,8 @@ impl Piece {
         }
     }
 
-    #[inline]
+    // Always inlined: four calls in the split's loop, each a few instructions past the call.
+    #[inline(always)]
     fn push(&mut self, p: DVec3, corner: Corner) {
         if self.points.last() != Some(&p) {
             self.points.push(p);
@@ -295,8 +296,9 @@ impl Piece {
 
     /// The piece, each edge knowing its plane: an edge along edge `i` of the parent keeps that
     /// edge's plane, any other runs along the cutting plane. `None` when fewer than three
-    /// distinct points are left.
-    fn into_polygon(mut self, parent: &Polygon, cut: &Plane) -> Option<Polygon> {
+    /// distinct points are left. The points are moved out (by value, the whole piece was
+    /// copied into the call).
+    fn take_polygon(&mut self, parent: &Polygon, cut: &Plane) -> Option<Polygon> {
         while self.points.len() > 1 && self.points.first() == self.points.last() {
             self.points.pop();
             if self.track {
@@ -310,28 +312,38 @@ impl Piece {
         if !self.track {
             // Not tracked (a tree's own polygons): no edge is cut by a meet of planes.
             return Some(Polygon::with_plane(
-                self.points,
+                std::mem::take(&mut self.points),
                 parent.plane,
                 parent.source,
             ));
         }
         let n = parent.vertices.len();
-        let edges = (0..m)
-            .map(|k| {
-                let along = match (self.corners[k].get(), self.corners[(k + 1) % m].get()) {
-                    ((i, false), (j, false)) if j == (i + 1) % n => Some(i),
-                    ((i, false), (j, true)) if i == j => Some(i),
-                    ((i, true), (j, false)) if j == (i + 1) % n => Some(i),
-                    _ => None,
+        let own = parent.edges();
+        // Each corner with the next, the last with the first; the pairs are counted exactly,
+        // so the shared slice is written in place.
+        let corners = &self.corners[..m];
+        let next = corners[1..].iter().chain(&corners[..1]);
+        let edges = corners
+            .iter()
+            .zip(next)
+            .map(|(a, b)| {
+                let ((i, a_cut), (j, b_cut)) = (a.get(), b.get());
+                // Along edge `i` of the parent: from its vertex `i` (or its cut) to its vertex
+                // `i + 1`, or from its vertex `i` to its cut.
+                let along = if b_cut {
+                    !a_cut && i == j
+                } else {
+                    j == if i + 1 == n { 0 } else { i + 1 }
                 };
-                match along {
-                    Some(i) => parent.edges().get(i).copied().unwrap_or(UNKNOWN),
-                    None => *cut,
+                if along {
+                    own.get(i).copied().unwrap_or(UNKNOWN)
+                } else {
+                    *cut
                 }
             })
             .collect();
         Some(Polygon {
-            vertices: self.points,
+            vertices: std::mem::take(&mut self.points),
             plane: parent.plane,
             source: parent.source,
             edges: Some(edges),

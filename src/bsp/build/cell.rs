@@ -67,12 +67,21 @@ pub(super) fn cell_plane(
 /// the far polygons of a sphere (31 k of 32 k quads) rode down every level (its boolean took
 /// 558 M instructions instead of 367 M). At a quarter of the cell's, fandisk's difference
 /// came out cut so that `to_mesh` needed its wider welds (93 → 672 M).
-pub(super) fn wrap_plane(ids: &Ids, arena: &Arena, eps: f64) -> Option<Plane> {
+///
+/// `near_box` is the box of the `near` polygons (`None` where there are none), which the build
+/// has made for the focus already: making it again here was 5 M instructions of fandisk's 65 M
+/// of trees, both booleans.
+pub(super) fn wrap_plane(
+    ids: &Ids,
+    near_box: Option<&Aabb>,
+    arena: &Arena,
+    eps: f64,
+) -> Option<Plane> {
     // The plane needs at least half the cell's polygons far and beyond the near box.
-    if ids.near.is_empty() || 2 * ids.far.len() < ids.len() {
+    let bbox = near_box?;
+    if 2 * ids.far.len() < ids.len() {
         return None;
     }
-    let bbox = arena.bbox_of(&ids.near);
     // Far polygons wholly beyond the near ones' box by more than four tolerances, counted per
     // side, with the nearest such coordinate.
     let (low, high) = (bbox.min - 4.0 * eps, bbox.max + 4.0 * eps);

@@ -207,16 +207,20 @@ impl Tree {
         }) = work.pop()
         {
             let index = tree.nodes.len() as u32;
+            // The box of the cell's polygons that are not far, for the focus and `wrap_plane`
+            // (without a focus no polygon is far, and `wrap_plane` needs none).
+            let content =
+                (focus.is_some() && !ids.near.is_empty()).then(|| arena.bbox_of(&ids.near));
             let near = match (focus, near) {
                 (Some(boxes), Some(near)) => {
                     // Keep only the focus boxes that reach the cell's polygons that are not
                     // far (a far one comes near none of them): none where every polygon is far.
                     let mut near = near;
-                    if ids.near.is_empty() {
-                        near.clear();
-                    } else {
-                        let content = arena.bbox_of(&ids.near);
-                        near.retain(|&i| boxes[i as usize].overlaps(&content, margin));
+                    match &content {
+                        None => near.clear(),
+                        Some(content) => {
+                            near.retain(|&i| boxes[i as usize].overlaps(content, margin));
+                        }
                     }
                     if near.is_empty() {
                         scratch.recycle(near);
@@ -230,7 +234,7 @@ impl Tree {
             };
             // The plane is placed by the polygons that are not far alone: first around them,
             // where many far polygons lie beyond their box.
-            let plane = wrap_plane(&ids, &arena, eps).or_else(|| {
+            let plane = wrap_plane(&ids, content.as_ref(), &arena, eps).or_else(|| {
                 (ids.near.len() > CELL_POLYGONS)
                     .then(|| cell_plane(&ids.near, &arena, eps, &mut scratch.keys))
                     .flatten()
