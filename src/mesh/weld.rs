@@ -41,7 +41,7 @@ const HALVES_FROM: usize = 1 << 13;
 
 /// From this many distinct positions on, and with more than one thread, the grid pass marks
 /// the lone positions in parallel and walks only the rest (see [`grid::lone_apart`]).
-const LONE_FROM: usize = 1 << 13;
+const LONE_FROM: usize = 1 << 11;
 
 /// One index per distinct position of `points`, numbered in the order positions are first met
 /// (as [`Welder::index`] over `points` in order): the positions and each point's index.
