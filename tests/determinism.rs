@@ -140,6 +140,19 @@ fn sphere_union_copy_moved_by_a_hair_is_repeatable() {
     assert_repeatable("sphere & sphere moved 1e-7", || &a & &b);
 }
 
+/// The same at 128 x 64: the indexed repair welds over 8,192 distinct positions, many of them
+/// cut points close together, so on more than one thread its grid pass marks the lone ones in
+/// parallel and walks the rest; the one-thread pool walks them all.
+#[test]
+fn a_larger_sphere_union_copy_moved_by_a_hair_is_repeatable() {
+    let a = Solid::sphere(1.0, 128, 64).unwrap();
+    let b = a
+        .clone()
+        .translate(DVec3::new(0.3, 1.0, 0.2) * 1e-7)
+        .unwrap();
+    assert_repeatable("sphere 128 x 64 | sphere moved 1e-7", || &a | &b);
+}
+
 #[test]
 fn sphere_less_copy_turned_by_a_hair_is_repeatable() {
     let a = Solid::sphere(1.0, 64, 32).unwrap();
@@ -194,8 +207,9 @@ fn sphere_with_itself_is_repeatable() {
 }
 
 /// A solid of no boolean has no vertex ids, so its mesh comes from the full repair pass, whose
-/// exact weld (130,000 corners here) and edge sort run in two halves on more than one thread:
-/// the one-thread pool runs them serially, the reference.
+/// exact weld (130,000 corners here) and edge sort run in two halves on more than one thread,
+/// and whose grid pass walks only the positions that are not lone (see `weld::grid`): the
+/// one-thread pool runs them serially, the reference.
 #[test]
 fn a_large_sphere_alone_is_repeatable() {
     let s = Solid::sphere(1.0, 256, 128).unwrap();

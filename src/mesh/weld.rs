@@ -33,9 +33,15 @@ impl Welder {
     }
 }
 
+mod grid;
+
 /// From this many points on, and with more than one thread, the exact weld runs in two halves
 /// (below it the join costs more than it saves).
 const HALVES_FROM: usize = 1 << 13;
+
+/// From this many distinct positions on, and with more than one thread, the grid pass marks
+/// the lone positions in parallel and walks only the rest (see [`grid::lone_apart`]).
+const LONE_FROM: usize = 1 << 11;
 
 /// One index per distinct position of `points`, numbered in the order positions are first met
 /// (as [`Welder::index`] over `points` in order): the positions and each point's index.
@@ -157,61 +163,11 @@ pub(crate) fn weld_within(points: &[DVec3], delta: f64, wide: &Wide) -> (Vec<DVe
     if delta <= 0.0 {
         return (positions, first);
     }
-    // Cells much larger than any reach: a representative within reach of a point lies in the
-    // point's own cell, or in a neighbour only where the point is within reach of that side.
-    let widest = wide.widest(delta);
-    let cell_size = 64.0 * widest;
-    let cell = |p: DVec3| cell_of(p, cell_size);
-    let mut grid: KeyedHashMap<[i64; 3], SmallVec<[u32; 2]>> =
-        KeyedHashMap::with_capacity_and_hasher(positions.len(), KeyedBuild::default());
-    let mut reps: Vec<DVec3> = Vec::with_capacity(positions.len());
-    let mut rep_reach: Vec<f64> = Vec::with_capacity(positions.len());
-    let mut rep_of: Vec<u32> = Vec::with_capacity(positions.len());
-    for &p in &positions {
-        let reach = wide.reach(p, delta);
-        let c = cell(p);
-        // Per axis, the neighbour offsets worth looking at.
-        let offsets = |k: usize| -> SmallVec<[i64; 3]> {
-            let lo = c[k] as f64 * cell_size;
-            let mut o: SmallVec<[i64; 3]> = smallvec::smallvec![0];
-            if p[k] - lo <= widest {
-                o.push(-1);
-            }
-            if lo + cell_size - p[k] <= widest {
-                o.push(1);
-            }
-            o
-        };
-        let (ox, oy, oz) = (offsets(0), offsets(1), offsets(2));
-        let mut found = None;
-        'search: for &dx in &ox {
-            for &dy in &oy {
-                for &dz in &oz {
-                    let k = [
-                        c[0].saturating_add(dx),
-                        c[1].saturating_add(dy),
-                        c[2].saturating_add(dz),
-                    ];
-                    if let Some(list) = grid.get(&k)
-                        && let Some(&r) = list.iter().find(|&&r| {
-                            reps[r as usize].distance(p) <= reach.max(rep_reach[r as usize])
-                        })
-                    {
-                        found = Some(r);
-                        break 'search;
-                    }
-                }
-            }
-        }
-        let r = found.unwrap_or_else(|| {
-            reps.push(p);
-            rep_reach.push(reach);
-            let r = (reps.len() - 1) as u32;
-            grid.entry(c).or_default().push(r);
-            r
-        });
-        rep_of.push(r);
-    }
+    let (reps, rep_of) = if positions.len() >= LONE_FROM && rayon::current_num_threads() > 1 {
+        grid::lone_apart(&positions, delta, wide)
+    } else {
+        grid::serial(&positions, delta, wide)
+    };
     let map = first.par_iter().map(|&i| rep_of[i as usize]).collect();
     (reps, map)
 }

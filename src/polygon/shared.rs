@@ -5,7 +5,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::geom::Plane;
-use crate::hash::KeyedHashMap;
+use crate::hash::{KeyedBuild, KeyedHashMap};
 
 use super::Polygon;
 use super::planes::{canonical, plane_bits};
@@ -47,7 +47,8 @@ pub(crate) fn share_near_parallel_vertices(groups: &mut [&mut Vec<Polygon>], eps
             keyed.extend(group.iter().enumerate().flat_map(|(i, p)| keys_of(g, i, p)));
         }
     }
-    let mut least: KeyedHashMap<Key, DVec3> = KeyedHashMap::default();
+    let mut least: KeyedHashMap<Key, DVec3> =
+        KeyedHashMap::with_capacity_and_hasher(keyed.len(), KeyedBuild::default());
     for &(g, i, k, key) in &keyed {
         let v = groups[g as usize][i as usize].vertices[k as usize];
         least

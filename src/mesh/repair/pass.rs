@@ -3,6 +3,7 @@
 //! passes run, and which one is kept, is the parent module's choice.
 
 use glam::DVec3;
+use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::{Ring, cracks, regions, shells, thin, tjunction};
@@ -144,9 +145,47 @@ fn wide_drag(
     drag
 }
 
+/// Polygons per chunk of [`rings_of`]'s parallel path.
+const RINGS_CHUNK: usize = 1 << 10;
+
 /// The rings of `polygons` through the weld `map` of their corners in order, numbered from
-/// `first`; rings that welding emptied or flattened (see [`spans_area`]) are left out.
+/// `first`; rings that welding emptied or flattened (see [`spans_area`]) are left out. Each ring
+/// is its own: with more than one thread and from two chunks of polygons on, the chunks run in
+/// parallel from their first corners (a prefix count) and are listed in order, the same list.
 pub(super) fn rings_of(
+    polygons: &[Polygon],
+    map: &[u32],
+    positions: &[DVec3],
+    delta: f64,
+    first: usize,
+) -> Vec<Ring> {
+    if polygons.len() < 2 * RINGS_CHUNK || rayon::current_num_threads() == 1 {
+        return rings_in(polygons, map, positions, delta, first);
+    }
+    let corners: Vec<usize> = polygons
+        .par_chunks(RINGS_CHUNK)
+        .map(|c| c.iter().map(|p| p.vertices().len()).sum())
+        .collect();
+    let starts: Vec<usize> = corners
+        .iter()
+        .scan(0, |at, &n| {
+            let start = *at;
+            *at += n;
+            Some(start)
+        })
+        .collect();
+    polygons
+        .par_chunks(RINGS_CHUNK)
+        .zip(starts)
+        .enumerate()
+        .flat_map_iter(|(k, (chunk, at))| {
+            rings_in(chunk, &map[at..], positions, delta, first + k * RINGS_CHUNK)
+        })
+        .collect()
+}
+
+/// [`rings_of`] on one thread, `map` starting at `polygons`' first corner.
+fn rings_in(
     polygons: &[Polygon],
     map: &[u32],
     positions: &[DVec3],
