@@ -156,3 +156,57 @@ fn tops_crossing_at_a_hair_through_given_corners_close_with_their_volume() {
         }
     }
 }
+
+/// Round 20's fork input e5d963a7, minimised: a 3-segment prism (a cylinder of radius 0.25)
+/// whose face x = −0.4375 is fitted from cosines (3.8·10⁻¹⁶ rad off the axis), ∪ a 0.125 cube
+/// turned 1e-6° on that face, ∪ a 0.125 × 0.25 × 0.125 cuboid whose face x = −0.4375 is the
+/// prism's twin, ∪ a 1.125 × 0.75 × 0.125 slab through all three.
+///
+/// The cube's face crosses both twins at 1.7·10⁻⁸ rad, on lines 2·10⁻⁹ apart at its edge. Cut
+/// on the prism's face by the first union, its corners there were judged across the line of
+/// the cuboid's face by the second: beside it, so the strip between (6.1·10⁻¹¹) stayed, the
+/// second union open in +x. The slab's union built its tree on the strip, whose plane read
+/// outside across the prism, and kept 1.6·10⁻² of the slab's bottom inside the prism: the
+/// solid 3.6·10⁻⁴ above its mesh, which was right. A corner on an edge in the cutting plane's
+/// flipped twin is now judged on it (`flipped_twin` in `polygon/side.rs`).
+#[test]
+fn a_corner_cut_on_a_face_is_on_its_flipped_twin() {
+    let at = |solid: Solid| solid.translate(DVec3::splat(-0.5)).unwrap();
+    let prism = Solid::cylinder(0.25, 0.5, 3)
+        .unwrap()
+        .translate(DVec3::new(-0.3125, -0.5, -0.5))
+        .unwrap();
+    let axis = DVec3::new(
+        -0.7028307572563588,
+        -0.10980825701606559,
+        -0.7028307572563588,
+    );
+    let turn = DQuat::from_axis_angle(axis, 1e-6f64.to_radians());
+    let cube = at(Solid::cube(0.125).unwrap().rotate(turn).unwrap());
+    let cuboid = at(Solid::cuboid(DVec3::new(0.125, 0.25, 0.125)).unwrap());
+    let slab = at(Solid::cuboid(DVec3::new(1.125, 0.75, 0.125)).unwrap());
+    let twins = &(&prism | &cube) | &cuboid;
+    let open: DVec3 = twins
+        .polygons()
+        .iter()
+        .map(|p| p.plane().normal() * p.area())
+        .sum();
+    assert!(open.length() < 1e-15, "the union is open by {open}");
+    let result = &twins | &slab;
+    let mesh = result.to_mesh();
+    let report = mesh.report();
+    assert!(report.is_closed_manifold(), "{report}");
+    // The same unions with the cube unturned (it lies in the cuboid, which lies in the slab).
+    let want = 0.12600910253592848;
+    assert!(
+        (mesh.volume() - want).abs() < 1e-10,
+        "mesh {}",
+        mesh.volume()
+    );
+    assert!(
+        (result.volume() - mesh.volume()).abs() < 1e-10,
+        "solid {} mesh {}",
+        result.volume(),
+        mesh.volume()
+    );
+}

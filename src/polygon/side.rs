@@ -81,6 +81,37 @@ pub(crate) fn plane_noise(plane: &Plane, v: DVec3) -> f64 {
     64.0 * f64::EPSILON * ((v - plane.anchor).abs().max_element() + v.abs().max_element())
 }
 
+/// Whether `e`, the plane of an edge, is `plane` flipped to rounding: opposite normals whose
+/// sine is below [`FLIPPED_BELOW`]. A vertex on such an edge and within `eps` of `plane` lies on
+/// the face across the edge, which is `plane`'s twin (a prism's face and a cuboid's face
+/// against it, each computed from its own corners): it was made on `plane` as much as on `e`.
+///
+/// Judged instead by the line where the polygon's own plane crosses `plane` (see
+/// [`Polygon::crossing_at`]), it read beside that line: the two twins cross a third plane
+/// nearly parallel to both (a cube turned 10⁻⁶°, 1.7·10⁻⁸ rad) on lines the twins' rounding
+/// (3.8·10⁻¹⁶ rad between them) puts 2·10⁻⁹ apart at the cube's edge. A union of a 3-segment
+/// prism, that cube on its face x = −0.4375 and a cuboid whose face x = −0.4375 is the
+/// prism's twin kept the strip of the cube's face between the two lines (6.1·10⁻¹¹, the solid
+/// open by that much in +x); a slab united next built its tree on the strip, whose plane read
+/// outside across the prism, and kept 1.6·10⁻² of the slab's bottom inside it (round 20's fork
+/// input e5d963a7: the solid 3.7·10⁻³ above its mesh).
+///
+/// Only flipped twins: for same-facing ones (round 18's 15d49cd9, a flat remnant of a sphere
+/// less itself turned 10⁻⁹°, united with the sphere moved along a face's plane) judging the
+/// vertex on the plane cut the remnant away from where the other operand's crossing lines cut
+/// the sphere's faces (the volume 6.5·10⁻⁸ out of bounds), which the crossing line keeps
+/// consistent.
+#[inline]
+fn flipped_twin(e: &Plane, plane: &Plane) -> bool {
+    e.normal.dot(plane.normal) < 0.0 && e.normal.cross(plane.normal).length() < FLIPPED_BELOW
+}
+
+/// The sine below which an edge's plane facing against a cutting plane is taken as its flip
+/// (see [`flipped_twin`]): 64 ulps, well above the rounding of a plane fitted to corners
+/// (3.8·10⁻¹⁶ for a prism's face from cosines) and well below the smallest turn the fuzz
+/// programs make (10⁻¹¹°, 1.7·10⁻¹³ rad), which must stay a crossing.
+const FLIPPED_BELOW: f64 = 64.0 * f64::EPSILON;
+
 /// How far from `plane` the rounding of its distance alone puts a point not computed on it.
 /// [`Plane::distance`] is `n · (v − anchor)`: for coordinates taken as they are, the
 /// subtraction rounds each component by at most ε |vᵢ − aᵢ| and the three-term dot product adds
@@ -100,7 +131,7 @@ const GIVEN_NOISE_ULPS: f64 = 8.0;
 
 impl Polygon {
     /// Whether vertex `i` may have been computed on `plane` (or its flip): an edge beside it
-    /// lies in `plane`, or the plane of an edge beside it is not known; where the polygon
+    /// lies in `plane` (or its [`flipped_twin`]), or the plane of an edge beside it is not known; where the polygon
     /// tracks no edge planes at all, any vertex, or if it is `given` (never cut) one that
     /// the polygon whose plane `plane` is holds too. Such a vertex keeps
     /// [`plane_noise`]; any other is taken as given and gets [`given_noise`]. A polygon with an
@@ -114,9 +145,9 @@ impl Polygon {
         if edges.len() != n {
             return given.is_none_or(|on| on.contains(&self.vertices[i]));
         }
-        [&edges[(i + n - 1) % n], &edges[i]]
-            .iter()
-            .any(|e| e.normal == DVec3::ZERO || e.is_same_or_flipped(plane))
+        [&edges[(i + n - 1) % n], &edges[i]].iter().any(|e| {
+            e.normal == DVec3::ZERO || e.is_same_or_flipped(plane) || flipped_twin(e, plane)
+        })
     }
 }
 
@@ -126,7 +157,7 @@ impl Polygon {
     /// sine `own`, and its two edges') crosses it nearly in parallel (at a sine from
     /// [`PARALLEL_BELOW`] to [`NEAR_PARALLEL`]), the closest to parallel if more than one does
     /// (as [`meet`](super::planes::meet) takes it; the least by its bits on a tie).
-    /// `None` where none does, or an edge beside the vertex lies in `plane` (the vertex was
+    /// `None` where none does, or an edge beside the vertex lies in `plane` or its [`flipped_twin`] (the vertex was
     /// made on it).
     ///
     /// Where two faces cross at such an angle, the distance of a vertex of either from the
@@ -148,7 +179,7 @@ impl Polygon {
             if e.normal == DVec3::ZERO {
                 continue;
             }
-            if e.is_same_or_flipped(plane) {
+            if e.is_same_or_flipped(plane) || flipped_twin(e, plane) {
                 return None;
             }
             let s = e.normal.cross(plane.normal).length();
