@@ -1,5 +1,6 @@
 //! Boolean programs decoded from bytes, shared by the `booleans` fuzz target and the
-//! regression tests that replay what it found (`tests/fuzz_findings.rs`).
+//! regression tests that replay what it found (`tests/fuzz_findings.rs`,
+//! `tests/fuzz_findings_files.rs`, `tests/fuzz_forks.rs`, through `tests/common/fuzz_replay.rs`).
 
 use bspcsg::glam::{DQuat, DVec3};
 use bspcsg::{Mesh, Solid};

@@ -1,5 +1,6 @@
 //! Scene documents checked both ways, shared by the `scenes` fuzz target and the regression
-//! tests that replay what it found (`tests/fuzz_findings.rs`).
+//! tests that replay what it found (`tests/fuzz_findings_scenes.rs`,
+//! `tests/fuzz_findings_thin_shells.rs`).
 //!
 //! Needles are judged as the kernel promises to remove them. A bake's are judged by each
 //! shell's diagonal, as [`bspcsg::MeshReport`] counts them. The BSP route's mesh comes from a
