@@ -86,7 +86,7 @@ fn replay_fork(hash: &str) {
 /// labelling a point judges no polygon edge within the tolerance long: the last union kept
 /// pieces of the cube's faces lying in the bar's, labelled outside from two tolerances inside
 /// the bar by a ray whose exit face's ring turned back by one ulp at a corner (`crossing` in
-/// `bsp/surface/ray/mod.rs`; minimised in `robustness.rs`,
+/// `bsp/surface/ray/mod.rs`; minimised in `turned_twins.rs`,
 /// `union_with_a_cube_inside_a_bar_beside_its_turned_twin_changes_nothing`). With it, round
 /// 20's edf27eb0 (a cylinder ∪ a bar turned 1e-3° ∪ the 0.125 cube three times, once an OBJ
 /// box: step 3 the solid 2.1e-5 above its mesh), not traced.
@@ -192,12 +192,12 @@ fn the_round_18_fork_run_near_coplanar_inputs() {
 /// the point off it (`Surface::crossings_off`; see [`FORK_20_PASSING`]); a1909398 (0.125 cubes
 /// at one centre, one turned 1e-5°, ∪ a box turned 1e-5°, then ∩ the exact cube: step 2 a flat
 /// shell), closed since a sliver's vertex within the plane's rounding reaches neither side
-/// (`sliver_side` in `bsp/build/face.rs`; its test in `robustness.rs`); 37e0688d (a bar turned
+/// (`sliver_side` in `bsp/build/face.rs`; its test in `turned_twins.rs`); 37e0688d (a bar turned
 /// 0.298 rad ∪ a 0.125 cube and a 0.625 cube, both turned 1e-5° about their diagonal, ∩ the
 /// 0.625 cube unturned: step 2 open, 4 boundary edges) and 71023f02 (the same union ∪ a
 /// cylinder, less the unturned cube: step 3 open, 5 boundary edges; not traced), closed since an
 /// edge whose neighbour was cut inside it by an earlier boolean takes that neighbour's plane
-/// (`attach_edges_across_t_junctions` in `polygon/planes.rs`; minimised in `robustness.rs`):
+/// (`attach_edges_across_t_junctions` in `polygon/planes.rs`; minimised in `turned_twins.rs`):
 /// its corner, 6.4e-15 off the unturned cube's face, no longer counts as made on it;
 /// f35b6000 (a 0.125 × 0.625 × 0.875 box turned 1e-9° ∪ a cube ∪ an unturned box on its
 /// face ∪ a 0.125 cube at its corner: step 2 open, 6 boundary edges), closed since a flat fin

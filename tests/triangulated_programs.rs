@@ -4,8 +4,8 @@
 //! 2-manifold and no needles.
 //!
 //! Boxes turned by tiny angles (faces a hair off coplanar) are left to the `booleans` fuzz
-//! target: they still have open findings (the ignored tests in `tests/robustness.rs`,
-//! `tests/fuzz_findings.rs`, `tests/fuzz_findings_files.rs` and `tests/fuzz_forks.rs`).
+//! target: they still have open findings (the ignored tests in `tests/fuzz_findings.rs`,
+//! `tests/fuzz_findings_files.rs` and `tests/fuzz_forks.rs`).
 
 mod common;
 

@@ -5,6 +5,8 @@
 
 pub mod cli;
 pub mod hostile;
+pub mod mesh_files;
+pub mod mesh_input;
 pub mod run;
 
 use std::path::PathBuf;
@@ -61,6 +63,24 @@ pub fn needles(mesh: &Mesh, rel: f64) -> usize {
             0.5 * (b - a).cross(c - a).length() < rel * d2
         })
         .count()
+}
+
+/// Asserts that `mesh` is a closed 2-manifold holding no needle (no triangle below 1e-12 ×
+/// its bounding box's diagonal², see [`needles`]) and returns its report.
+pub fn assert_closed_without_needles(mesh: &Mesh, what: &str) -> MeshReport {
+    let report = assert_closed_manifold(mesh, what);
+    assert_eq!(needles(mesh, 1e-12), 0, "{what}: needles; {report}");
+    report
+}
+
+/// Asserts `got` within `rel` of `want` (relative), printing both.
+pub fn assert_volume(got: f64, want: f64, rel: f64, what: &str) {
+    let err = (got - want).abs() / want.abs();
+    println!("{what}: volume {got:.15e} (want {want:.15e}, rel err {err:.2e})");
+    assert!(
+        err <= rel,
+        "{what}: volume {got} want {want} (rel err {err:.2e})"
+    );
 }
 
 /// A box as an OBJ file brings it: 8 corners and 12 triangles, read as a solid.

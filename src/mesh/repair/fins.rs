@@ -41,38 +41,38 @@ fn cancel_reversed_quads(
             continue;
         }
         let t = triangles[i as usize];
-        for k in 0..3 {
+        'corners: for k in 0..3 {
             // `t` is `a b c` with `c → a` its edge k + 2; the quad's other half is `a c d`.
+            // Every triangle across that edge is tried: on a crowded edge the fold's other
+            // half need not be the first.
             let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
-            let Some(j) = by_edge.get(&(a, c)).and_then(|list| {
-                list.iter().copied().find(|&j| {
-                    let u = triangles[j as usize];
-                    j != i && !dropped[j as usize] && !u.contains(&b)
-                })
-            }) else {
-                continue;
-            };
-            let u = triangles[j as usize];
-            let m = (0..3).find(|&m| u[m] == a).expect("a corner of the pair");
-            let d = u[(m + 2) % 3];
-            let [pa, pb, pc, pd] = [a, b, c, d].map(|v| positions[v as usize]);
-            let n = (pb - pa).cross(pc - pa);
-            if n.length() == 0.0 || ((pd - pa).dot(n) / n.length()).abs() > flat {
-                continue;
+            let across = by_edge.get(&(a, c)).map_or(&[][..], Vec::as_slice);
+            for &j in across {
+                let u = triangles[j as usize];
+                if j == i || dropped[j as usize] || u.contains(&b) {
+                    continue;
+                }
+                let m = (0..3).find(|&m| u[m] == a).expect("a corner of the pair");
+                let d = u[(m + 2) % 3];
+                let [pa, pb, pc, pd] = [a, b, c, d].map(|v| positions[v as usize]);
+                let n = (pb - pa).cross(pc - pa);
+                if n.length() == 0.0 || ((pd - pa).dot(n) / n.length()).abs() > flat {
+                    continue;
+                }
+                let Some(x) = find([a, d, b], dropped) else {
+                    continue;
+                };
+                dropped[x as usize] = true;
+                let Some(y) = find([d, c, b], dropped) else {
+                    dropped[x as usize] = false;
+                    continue;
+                };
+                for z in [i, j, x, y] {
+                    dropped[z as usize] = true;
+                }
+                any = true;
+                break 'corners;
             }
-            let Some(x) = find([a, d, b], dropped) else {
-                continue;
-            };
-            dropped[x as usize] = true;
-            let Some(y) = find([d, c, b], dropped) else {
-                dropped[x as usize] = false;
-                continue;
-            };
-            for z in [i, j, x, y] {
-                dropped[z as usize] = true;
-            }
-            any = true;
-            break;
         }
     }
     any
@@ -249,6 +249,35 @@ mod tests {
         assert_eq!(fold(0.0), vec![[0, 1, 4]]);
         assert_eq!(fold(0.5e-6), vec![[0, 1, 4]]);
         assert_eq!(fold(2e-6).len(), 5);
+    }
+
+    /// The flat quad `2 3 4 5` split along 2–4 on one side and along 3–5 the other way round,
+    /// on a crowded sheet: every edge its triangles are looked across (each of the 12 directed
+    /// edges between its corners) also carries a triangle to a corner one unit off the sheet
+    /// (0 above for edges running up in number, 1 below for the others, so no two of them are
+    /// a reversed pair), and those come first across the edge (their least corner is lower).
+    /// The fin goes however many triangles share its edges; the twelve stay.
+    #[test]
+    fn a_fin_is_dropped_when_its_other_half_is_not_first_across_the_edge() {
+        let positions = [
+            DVec3::new(0.5, 0.5, 1.0),
+            DVec3::new(0.5, 0.5, -1.0),
+            DVec3::ZERO,
+            DVec3::X,
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::Y,
+        ];
+        let fin = [[2, 3, 4], [2, 4, 5], [2, 5, 3], [5, 4, 3]];
+        let mut crowd = Vec::new();
+        for a in 2..6u32 {
+            for c in 2..6u32 {
+                if a != c {
+                    crowd.push([a, c, if a < c { 0 } else { 1 }]);
+                }
+            }
+        }
+        let triangles: Vec<[u32; 3]> = fin.iter().chain(&crowd).copied().collect();
+        assert_eq!(kept(&positions, &triangles, &[]), crowd);
     }
 
     /// Two thin pyramids base to base, 2·10⁻⁶ high each (two welds): the lower one's top
