@@ -185,7 +185,7 @@ pub(super) fn repair(
     // Every indexed boolean of the unit tests checks the skip against the walk of every link.
     #[cfg(test)]
     assert_eq!(disc, one_disc(&triangles, positions.len()));
-    let (mesh, cracks) = shells::split_around_discs(positions, (triangles, sources), &disc);
+    let (mesh, cracks) = shells::split_around_discs(positions, (triangles, sources), &disc, 0.0);
     Some((mesh, cracks, known))
 }
 

@@ -50,7 +50,7 @@ use super::Mesh;
 use super::weld::Wide;
 use crate::geom::Tolerance;
 use crate::polygon::Polygon;
-use pass::{measured_repair, repair};
+use pass::{measured_repair, repair, tie_repair};
 
 pub(crate) use indexed::Indexed;
 
@@ -111,14 +111,16 @@ pub(crate) struct Ring {
 /// repair, its mesh returned open (the indexed or quick pass too: no later one closes such a
 /// mesh). Where a few cracks remain, a pass first fills the flat ones (taken only if that closes
 /// the mesh); else each further pass lets the points near them weld and join edges ten times
-/// farther, and the pass with the fewest cracks is kept. Every pass drops closed shells thinner
-/// than the weld (see [`thin`]).
+/// farther, and the pass with the fewest cracks is kept; where none closes the mesh, a last pass
+/// at the first weld orders tied sheets about crowded edges to alternate (taken only if that
+/// closes it, see [`tie_repair`]). Every pass drops closed shells thinner than the weld (see
+/// [`thin`]).
 pub(crate) fn polygons_to_mesh(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> Mesh {
     counted_repair(polygons, eps, index).0
 }
 
 /// [`polygons_to_mesh`], and how many repair passes it took (the indexed one included): at
-/// most `2 × WELD_RETRIES + 4`, and one where the first pass leaves more than [`WIDEN_CRACKS`]
+/// most `2 × WELD_RETRIES + 6`, and one where the first pass leaves more than [`WIDEN_CRACKS`]
 /// crack points (three where a later one does).
 fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (Mesh, u32) {
     if polygons.is_empty() {
@@ -209,6 +211,17 @@ fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (M
         passes += 1;
         best.consider(mesh, left.len(), 0.0);
     }
+    // Last, sheets touching across a gap thinner than the first weld, which it welded onto each
+    // other: their triangles' angles about a crowded edge can tie and not alternate (see
+    // `shells::around_edge`). Ordered to alternate, by the quick pass and then the full one,
+    // taken only where that closes the mesh; they move nothing beyond the first weld.
+    for quick in [true, false] {
+        if !best.clean {
+            let (mesh, _) = tie_repair(polygons, delta, quick);
+            passes += 1;
+            best.take_if_clean(mesh);
+        }
+    }
     let mut mesh = best.mesh;
     super::needles::remove_needles(&mut mesh, scale, None);
     (mesh, passes)
@@ -275,7 +288,7 @@ impl Attempt {
     /// each other as twins where the fill made its edge crowded, and the fans still join them
     /// (a cube less itself turned 3e-6°: 8 crack points on a closed mesh of the exact volume,
     /// passed over for a wider weld that flattened a wedge, 35 % of the volume). For the fill
-    /// at the first weld, which moves nothing.
+    /// and the tie pass at the first weld, which move nothing.
     fn take_if_clean(&mut self, mesh: Mesh) {
         if !self.clean && mesh.report().is_closed_manifold() {
             self.clean = true;

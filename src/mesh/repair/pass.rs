@@ -24,8 +24,35 @@ pub(super) fn repair(
     dragged: bool,
     fill_flat: Option<f64>,
 ) -> (Mesh, Vec<DVec3>) {
-    let (mesh, cracks, _) = pass(polygons, delta, wide, quick, dragged, fill_flat, false);
+    let (mesh, cracks, _) = pass(
+        polygons,
+        delta,
+        wide,
+        quick,
+        dragged,
+        fill_flat,
+        Mode::Plain,
+    );
     (mesh, cracks)
+}
+
+/// A pass at the first weld `delta` (`quick` as for [`repair`]) with tied angles about crowded
+/// edges ordered to alternate (see [`shells::split_into_shells`]): for the mesh no other pass
+/// closes.
+pub(super) fn tie_repair(polygons: &[Polygon], delta: f64, quick: bool) -> (Mesh, Vec<DVec3>) {
+    let wide = Wide::default();
+    let (mesh, cracks, _) = pass(polygons, delta, &wide, quick, false, None, Mode::Ties);
+    (mesh, cracks)
+}
+
+/// What a pass does besides the repair.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    Plain,
+    /// Also measures the volume its weld sweeps beyond `delta`.
+    Measured,
+    /// Orders tied angles about crowded edges to alternate.
+    Ties,
 }
 
 /// [`repair`] without filling, and the volume its weld sweeps beyond `delta` (see
@@ -37,10 +64,10 @@ pub(super) fn measured_repair(
     quick: bool,
     dragged: bool,
 ) -> (Mesh, Vec<DVec3>, f64) {
-    pass(polygons, delta, wide, quick, dragged, None, true)
+    pass(polygons, delta, wide, quick, dragged, None, Mode::Measured)
 }
 
-/// [`repair`]; with `measure`, also the volume its weld sweeps beyond `delta` (else 0).
+/// [`repair`]; in [`Mode::Measured`], also the volume its weld sweeps beyond `delta` (else 0).
 fn pass(
     polygons: &[Polygon],
     delta: f64,
@@ -48,7 +75,7 @@ fn pass(
     quick: bool,
     dragged: bool,
     fill_flat: Option<f64>,
-    measure: bool,
+    mode: Mode,
 ) -> (Mesh, Vec<DVec3>, f64) {
     // Sized first: collecting a flat map grows the list by copying (10⁶ corners).
     let mut corners: Vec<DVec3> =
@@ -57,7 +84,7 @@ fn pass(
         corners.extend_from_slice(p.vertices());
     }
     let (positions, map) = weld_within(&corners, delta, wide);
-    let swept = if measure {
+    let swept = if mode == Mode::Measured {
         swept_beyond(polygons, &corners, &positions, &map, delta)
     } else {
         0.0
@@ -76,8 +103,13 @@ fn pass(
     if let Some(flat) = fill_flat {
         filled_from -= cracks::close_flat_cracks(&positions, &mut triangles, flat);
     }
-    let (mut mesh, cracks) =
-        shells::split_into_shells(positions, triangles, &mut filled_from, delta);
+    let (mut mesh, cracks) = shells::split_into_shells(
+        positions,
+        triangles,
+        &mut filled_from,
+        delta,
+        mode == Mode::Ties,
+    );
     thin::drop_thin_shells(&mut mesh, delta, filled_from);
     (mesh, cracks, swept)
 }

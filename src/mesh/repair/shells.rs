@@ -33,28 +33,34 @@ use crate::mesh::Mesh;
 /// the rest are sorted by edge and paired.
 ///
 /// Also returns the end points of half-edges left without a twin: the cracks. `delta` is the
-/// weld the positions were welded with (see [`FIN_SHORTEST_WELDS`]).
+/// weld the positions were welded with (see [`FIN_SHORTEST_WELDS`]); with `alternate_ties`,
+/// triangles whose angles about a crowded edge tie within that weld's noise are ordered to
+/// alternate (see [`around_edge`]).
 pub(super) fn split_into_shells(
     positions: Vec<DVec3>,
     (mut triangles, mut sources): (Vec<[u32; 3]>, Vec<u32>),
     filled_from: &mut usize,
     delta: f64,
+    alternate_ties: bool,
 ) -> (Mesh, Vec<DVec3>) {
     let mut disc = one_disc(&triangles, positions.len());
     let fins = (&positions[..], FIN_SHORTEST_WELDS * delta);
     if cancel_reversed_pairs(fins, &mut triangles, &mut sources, &disc, filled_from) {
         disc = one_disc(&triangles, positions.len());
     }
-    split_around_discs(positions, (triangles, sources), &disc)
+    let ties = if alternate_ties { delta } else { 0.0 };
+    split_around_discs(positions, (triangles, sources), &disc, ties)
 }
 
 /// [`split_into_shells`] with `disc` from [`one_disc`]: around a disc vertex every edge is used
 /// once each way and its corners are one fan, so a half-edge between two of them needs no twin
-/// found (most of a boolean's output).
+/// found (most of a boolean's output). `ties` is the weld within which tied angles about a
+/// crowded edge are ordered to alternate, 0 for none (see [`around_edge`]).
 pub(super) fn split_around_discs(
     positions: Vec<DVec3>,
     (triangles, sources): (Vec<[u32; 3]>, Vec<u32>),
     disc: &[bool],
+    ties: f64,
 ) -> (Mesh, Vec<DVec3>) {
     let n = triangles.len() * 3;
     let from = |h: usize| triangles[h / 3][h % 3];
@@ -88,7 +94,7 @@ pub(super) fn split_around_discs(
                 twin[h2 as usize] = h1;
             }
         } else if group.len() > 2 {
-            crowded.push(around_edge(&positions, &triangles, group));
+            crowded.push(around_edge(&positions, &triangles, group, ties));
         }
         i = j;
     }
@@ -235,6 +241,7 @@ pub(crate) fn split_touching(mesh: &Mesh) -> Option<Mesh> {
         mesh.positions.clone(),
         (mesh.triangles.clone(), mesh.sources.clone()),
         &disc,
+        0.0,
     );
     (split.positions.len() > used && cracks.is_empty()).then_some(split)
 }
@@ -319,7 +326,25 @@ fn chains_of(crowded: &[Vec<(u32, bool)>], triangles: &[[u32; 3]]) -> Vec<usize>
 
 /// The half-edges of a crowded edge sorted by the angle of their triangles about it, each with
 /// whether it runs the same way as the first.
-fn around_edge(positions: &[DVec3], triangles: &[[u32; 3]], group: &[u32]) -> Vec<(u32, bool)> {
+///
+/// Around an edge where solids touch, the triangles alternate in direction. Each angle is that
+/// of the triangle's far corner, good only to the weld over that corner's distance from the
+/// edge: where two sheets touch across a gap thinner than the weld, their corners welded onto
+/// each other, a triangle of one reaching beyond where the faces cross can read below the other
+/// sheet though it lies above it along the edge (a box turned 1e-9° on a cut cylinder's top:
+/// the gap 4e-12 … 8.4e-12 at the edge, the far corner 1.5e-11 below; two half-edges of one
+/// direction side by side, which [`pair_around`] leaves without twins). With `ties` (the weld;
+/// 0 for none), two neighbours of opposite direction within that noise of each other are
+/// swapped where that makes their neighbours alternate. Slivers of two operands crossing on the
+/// edge tie there too, and for them the angles' order is the one later passes close from (a
+/// 32×16 sphere less itself turned 1e-6°), so the repair asks for this only where no ordinary
+/// pass closes the mesh.
+fn around_edge(
+    positions: &[DVec3],
+    triangles: &[[u32; 3]],
+    group: &[u32],
+    ties: f64,
+) -> Vec<(u32, bool)> {
     let h0 = group[0] as usize;
     let (a, b) = (
         triangles[h0 / 3][h0 % 3],
@@ -329,17 +354,31 @@ fn around_edge(positions: &[DVec3], triangles: &[[u32; 3]], group: &[u32]) -> Ve
     let axis = (pb - pa).normalize_or_zero();
     let u = axis.any_orthonormal_vector();
     let w = axis.cross(u);
-    let mut around: Vec<(f64, u32, bool)> = group
+    // (angle, half-edge, forward, how far the weld may put the angle off)
+    let mut around: Vec<(f64, u32, bool, f64)> = group
         .iter()
         .map(|&h| {
             let t = triangles[h as usize / 3];
             let apex = t[(h as usize % 3 + 2) % 3];
             let e = positions[apex as usize] - pa;
-            (e.dot(w).atan2(e.dot(u)), h, t[h as usize % 3] == a)
+            let (x, y) = (e.dot(u), e.dot(w));
+            let noise = if ties > 0.0 { ties / x.hypot(y) } else { 0.0 };
+            (y.atan2(x), h, t[h as usize % 3] == a, noise)
         })
         .collect();
     around.sort_by(|x, y| x.0.total_cmp(&y.0));
-    around.into_iter().map(|(_, h, f)| (h, f)).collect()
+    let m = around.len();
+    if ties > 0.0 {
+        for k in 0..m {
+            let (prev, next, after) = ((k + m - 1) % m, (k + 1) % m, (k + 2) % m);
+            let (p, q) = (around[k], around[next]);
+            let apart = (q.0 - p.0).rem_euclid(std::f64::consts::TAU);
+            if p.2 != q.2 && apart <= p.3 + q.3 && around[prev].2 == p.2 && around[after].2 == q.2 {
+                around.swap(k, next);
+            }
+        }
+    }
+    around.into_iter().map(|(_, h, f, _)| (h, f)).collect()
 }
 
 /// Pairs the half-edges of a crowded edge: each forward one with its clockwise neighbour (across
@@ -393,6 +432,7 @@ mod tests {
             (triangles.clone(), sources.clone()),
             &mut filled_from,
             1e-12,
+            false,
         );
         assert!(cracks.is_empty(), "{cracks:?}");
         assert_eq!(mesh.triangles.len(), 4);
@@ -401,7 +441,13 @@ mod tests {
         assert!((mesh.volume() - 1.0 / 6.0).abs() < 1e-15);
         // The fin as the fill's: kept.
         let mut filled_from = 4;
-        let (mesh, _) = split_into_shells(positions, (triangles, sources), &mut filled_from, 1e-12);
+        let (mesh, _) = split_into_shells(
+            positions,
+            (triangles, sources),
+            &mut filled_from,
+            1e-12,
+            false,
+        );
         assert_eq!((mesh.triangles.len(), filled_from), (6, 4));
     }
 
@@ -431,6 +477,7 @@ mod tests {
                 (triangles.clone(), sources.clone()),
                 &mut filled_from,
                 delta,
+                false,
             );
             assert_eq!((mesh.triangles.len(), filled_from), (kept, kept), "{delta}");
         }
