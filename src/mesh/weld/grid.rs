@@ -119,7 +119,7 @@ pub(super) fn lone_apart(positions: &[DVec3], delta: f64, wide: &Wide) -> (Vec<D
         .par_iter()
         .map(|&p| cell_of(p, cell_size))
         .collect();
-    let lone = lone_cells(&cells);
+    let lone = lone_cells(&cells, &KeyedBuild::default());
     let rest: Vec<u32> = (0..n as u32)
         .into_par_iter()
         .filter(|&i| !lone[i as usize])
@@ -181,8 +181,10 @@ pub(super) fn lone_apart(positions: &[DVec3], delta: f64, wide: &Wide) -> (Vec<D
 }
 
 /// Per cell of `cells` (one per distinct position, repeats allowed): whether it is the only one
-/// within one step of it on every axis, tested through hashed blocks (see [`lone_apart`]).
-fn lone_cells(cells: &[[i64; 3]]) -> Vec<bool> {
+/// within one step of it on every axis, tested through blocks hashed by `hasher` (see
+/// [`lone_apart`]: keyed per process, since the cells come from input; the tests pass a fixed
+/// hasher, so which cells share a slot is the same in every run).
+fn lone_cells(cells: &[[i64; 3]], hasher: &(impl BuildHasher + Sync)) -> Vec<bool> {
     // Two bits per slot, at least 32 slots per cell: few slots are shared.
     let bits = (cells.len().max(1) * 32)
         .next_power_of_two()
@@ -191,7 +193,6 @@ fn lone_cells(cells: &[[i64; 3]]) -> Vec<bool> {
         .into_par_iter()
         .map(|_| AtomicU64::new(0))
         .collect();
-    let hasher = KeyedBuild::default();
     let slot = |b: [i64; 3]| -> (usize, u32) {
         let mut h = hasher.build_hasher();
         b.iter().for_each(|&x| h.write_u64(x as u64));

@@ -1,4 +1,5 @@
 use super::*;
+use crate::hash::FxBuild;
 use crate::hash::test_support::lcg;
 use crate::mesh::weld::weld_exact;
 
@@ -64,7 +65,7 @@ fn lone_apart_is_the_serial_pass() {
         );
         let cell_size = 64.0 * wide.widest(*delta);
         let cells: Vec<[i64; 3]> = positions.iter().map(|&p| cell_of(p, cell_size)).collect();
-        let lone = lone_cells(&cells);
+        let lone = lone_cells(&cells, &FxBuild::default());
         let alone = lone.iter().filter(|&&l| l).count();
         assert!(
             alone > 0 && alone < positions.len(),
@@ -89,7 +90,7 @@ fn a_lone_cell_has_no_neighbour() {
         [i64::MAX, i64::MAX, i64::MAX],
         [i64::MIN, i64::MIN, i64::MIN],
     ]);
-    let lone = lone_cells(&cells);
+    let lone = lone_cells(&cells, &FxBuild::default());
     let near = |a: [i64; 3], b: [i64; 3]| (0..3).all(|k| a[k].abs_diff(b[k]) <= 1);
     let mut marked = 0;
     for (i, &a) in cells.iter().enumerate() {
