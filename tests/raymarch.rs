@@ -2,25 +2,17 @@
 //! images; bad render input; camera and lights read from the scene's envelope. The agreement
 //! check between a scene and a mesh is in `raymarch_check.rs`.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::Path;
 
 use bspcsg::raymarch::{
     Camera, Image, Light, LightKind, Projection, RenderOptions, Rgb8, Shading, View, render_mesh,
     render_scene,
 };
 use bspcsg::{Mesh, RenderProfile, Scene, Solid, TessellationOptions};
+use common::scenes::{SPHERE, example, scenes_dir};
 use glam::DVec3;
-
-const SPHERE: &str =
-    r#"{"kind": "sdf_primitive", "data": {"primitive_type": "sphere", "radius": 1}}"#;
-
-fn scenes_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes")
-}
-
-fn example(name: &str) -> Scene {
-    Scene::from_path(scenes_dir().join(format!("{name}.json"))).unwrap()
-}
 
 /// A render with no shadows, no occlusion and one light along the view: shading is simple.
 fn plain() -> RenderOptions {

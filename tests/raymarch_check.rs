@@ -2,22 +2,12 @@
 //! mesh, fails for meshes that are moved, scaled, missing a hole or a small part, and refuses
 //! what it cannot measure.
 
-use std::path::{Path, PathBuf};
+mod common;
 
 use bspcsg::raymarch::{Camera, CheckOptions, CheckReport, View, check_mesh};
 use bspcsg::{Mesh, Scene, Solid, TessellationOptions};
+use common::scenes::{SPHERE, example, scenes_dir};
 use glam::DVec3;
-
-const SPHERE: &str =
-    r#"{"kind": "sdf_primitive", "data": {"primitive_type": "sphere", "radius": 1}}"#;
-
-fn scenes_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes")
-}
-
-fn example(name: &str) -> Scene {
-    Scene::from_path(scenes_dir().join(format!("{name}.json"))).unwrap()
-}
 
 /// A cheaper check for the many cases below.
 fn quick(tol: f64) -> CheckOptions {

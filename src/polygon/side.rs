@@ -108,8 +108,11 @@ fn flipped_twin(e: &Plane, plane: &Plane) -> bool {
 
 /// The sine below which an edge's plane facing against a cutting plane is taken as its flip
 /// (see [`flipped_twin`]): 64 ulps, well above the rounding of a plane fitted to corners
-/// (3.8·10⁻¹⁶ for a prism's face from cosines) and well below the smallest turn the fuzz
-/// programs make (10⁻¹¹°, 1.7·10⁻¹³ rad), which must stay a crossing.
+/// (3.8·10⁻¹⁶ for a prism's face from cosines) and below [`PARALLEL_BELOW`] (5·10⁻¹³), under
+/// which an edge's plane is never taken as a crossing line either. Between the two, an edge's
+/// plane facing against `plane` is neither a twin nor a crossing: the vertex is judged by the
+/// polygon's own plane and its other edge. Whether the bound could be `PARALLEL_BELOW` itself
+/// was not measured (15d49cd9 shows same-facing twins must stay out).
 const FLIPPED_BELOW: f64 = 64.0 * f64::EPSILON;
 
 /// How far from `plane` the rounding of its distance alone puts a point not computed on it.

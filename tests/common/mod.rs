@@ -8,6 +8,7 @@ pub mod hostile;
 pub mod mesh_files;
 pub mod mesh_input;
 pub mod run;
+pub mod scenes;
 
 use std::path::PathBuf;
 
