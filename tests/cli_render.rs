@@ -4,28 +4,19 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
-
 use bspcsg::raymarch::Rgb8;
 use bspcsg::{Mesh, read_mesh, write_mesh};
 use common::run::{Scratch, bspcsg};
+use common::scenes::{example_path as scene, example_paths};
 use glam::DVec3;
 use serde_json::Value;
 
-fn scene(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("examples/scenes/{name}.json"))
-}
-
 /// Every example scene's name.
 fn scenes() -> Vec<String> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes");
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+    let names: Vec<String> = example_paths()
+        .iter()
         .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
         .collect();
-    names.sort();
     assert!(names.len() >= 4, "{names:?}");
     names
 }

@@ -5,19 +5,14 @@ mod common;
 
 use std::ffi::OsStr;
 use std::fs;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use common::cli::{assert_solid, info, num, rel};
 use common::run::{Scratch, bspcsg};
+use common::scenes::example_paths;
 
 fn scenes() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes");
-    let mut v: Vec<PathBuf> = fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension() == Some(OsStr::new("json")))
-        .collect();
-    v.sort();
+    let v = example_paths();
     assert!(!v.is_empty());
     v
 }

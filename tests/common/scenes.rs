@@ -13,7 +13,23 @@ pub fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes")
 }
 
-/// The example scene `name` (`examples/scenes/<name>.json`).
+/// The path of the example scene `name` (`examples/scenes/<name>.json`).
+pub fn example_path(name: &str) -> PathBuf {
+    scenes_dir().join(format!("{name}.json"))
+}
+
+/// The example scene `name`, read.
 pub fn example(name: &str) -> Scene {
-    Scene::from_path(scenes_dir().join(format!("{name}.json"))).unwrap()
+    Scene::from_path(example_path(name)).unwrap()
+}
+
+/// The paths of every example scene, sorted.
+pub fn example_paths() -> Vec<PathBuf> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(scenes_dir())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "json"))
+        .collect();
+    paths.sort();
+    paths
 }
