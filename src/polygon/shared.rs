@@ -1,11 +1,15 @@
 //! Vertices on three planes, two of them nearly parallel, made one point for both operands of
 //! a boolean.
 
+use std::collections::HashMap;
+use std::hash::{BuildHasher, BuildHasherDefault, Hash, Hasher};
+use std::sync::atomic::{AtomicU32, Ordering};
+
 use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::geom::Plane;
-use crate::hash::{KeyedBuild, KeyedHashMap};
+use crate::hash::KeyedBuild;
 
 use super::Polygon;
 use super::planes::{canonical, plane_bits};
@@ -35,40 +39,135 @@ type Key = [[u64; 6]; 3];
 pub(crate) fn share_near_parallel_vertices(groups: &mut [&mut Vec<Polygon>], eps: f64) {
     // The vertices that have a key, in order, so the second pass computes none again (the
     // planes' sines were half of this pass on real models). With more than one thread the keys
-    // are found in parallel (every vertex's planes and sines: nearly all of the work), listed
-    // in the same order.
+    // and their hashes are found in parallel (every vertex's planes and sines: nearly all of
+    // the work), listed in the same order.
     let parallel = rayon::current_num_threads() > 1;
-    let mut keyed: Vec<(u32, u32, u32, Key)> = Vec::new();
+    let build = KeyedBuild::default();
+    let mut keyed: Vec<Keyed> = Vec::new();
+    let mut starts = vec![0];
     for (g, group) in groups.iter().enumerate() {
         if parallel {
             let found = group.par_iter().enumerate();
-            keyed.par_extend(found.flat_map_iter(|(i, p)| keys_of(g, i, p)));
+            keyed.par_extend(found.flat_map_iter(|(i, p)| keys_of(&build, g, i, p)));
         } else {
-            keyed.extend(group.iter().enumerate().flat_map(|(i, p)| keys_of(g, i, p)));
+            let found = group.iter().enumerate();
+            keyed.extend(found.flat_map(|(i, p)| keys_of(&build, g, i, p)));
         }
+        starts.push(keyed.len());
     }
-    let mut least: KeyedHashMap<Key, DVec3> =
-        KeyedHashMap::with_capacity_and_hasher(keyed.len(), KeyedBuild::default());
-    for &(g, i, k, key) in &keyed {
-        let v = groups[g as usize][i as usize].vertices[k as usize];
-        least
-            .entry(key)
-            .and_modify(|w| {
-                if lex_less(v, *w) {
-                    *w = v;
-                }
-            })
-            .or_insert(v);
-    }
-    if least.is_empty() {
+    if keyed.is_empty() {
         return;
     }
+    // The least point of every key. Which point that is does not depend on the order the
+    // vertices come in, but of equal points (−0 and +0) the first met is kept, so each key's
+    // vertices are taken in order: by one walk per shard of the keys (split by their hash),
+    // shards in parallel. Each vertex keeps its key's slot, so no key is hashed twice.
+    let parallel = parallel && keyed.len() >= PARALLEL_FROM;
+    let shards = if parallel {
+        rayon::current_num_threads().min(MAX_SHARDS)
+    } else {
+        1
+    };
+    let points: &[&mut Vec<Polygon>] = groups;
+    let least: Vec<Vec<DVec3>> = if parallel {
+        let of_shard = |s| least_in_shard(points, &keyed, s, shards);
+        (0..shards).into_par_iter().map(of_shard).collect()
+    } else {
+        vec![least_in_shard(points, &keyed, 0, 1)]
+    };
+    // Each vertex is moved with its polygon's neighbours as they stand, the earlier ones
+    // perhaps moved already: the order matters within a polygon only, so polygons go in
+    // parallel, in chunks.
     let reach = SHARE_REACH * eps;
-    for (g, i, k, key) in keyed {
-        let p = &mut groups[g as usize][i as usize];
-        let (n, k) = (p.vertices.len(), k as usize);
-        // The first pass put every key in `keyed` into `least`.
-        let w = least[&key];
+    for (g, group) in groups.iter_mut().enumerate() {
+        let keyed = &keyed[starts[g]..starts[g + 1]];
+        let least = &least[..];
+        let moved = |(c, polygons): (usize, &mut [Polygon])| {
+            move_to_least(polygons, c * CHUNK, keyed, least, shards, reach);
+        };
+        if parallel {
+            group.par_chunks_mut(CHUNK).enumerate().for_each(moved);
+        } else {
+            moved((0, &mut group[..]));
+        }
+    }
+}
+
+/// From this many keyed vertices, the least points are found in shards and the vertices moved
+/// in parallel.
+const PARALLEL_FROM: usize = 512;
+
+/// At most this many shards of keys, whatever the pool's size.
+const MAX_SHARDS: usize = 8;
+
+/// Polygons per parallel job of the second pass.
+const CHUNK: usize = 256;
+
+/// A vertex that has a key: where it is, its key and the key's hash, and the slot of its key's
+/// least point in its shard (set by [`least_in_shard`], each vertex by one shard only).
+struct Keyed {
+    g: u32,
+    i: u32,
+    k: u32,
+    slot: AtomicU32,
+    hash: u64,
+    key: Key,
+}
+
+/// The shard of `hash` among `shards` (bits the map's own buckets do not start from).
+fn shard_of(hash: u64, shards: usize) -> usize {
+    (hash >> 32) as usize % shards
+}
+
+/// The least point of each key of shard `s` (in order of the key's first vertex), walking the
+/// vertices in order; sets each of the shard's vertices' slot.
+fn least_in_shard(
+    groups: &[&mut Vec<Polygon>],
+    keyed: &[Keyed],
+    s: usize,
+    shards: usize,
+) -> Vec<DVec3> {
+    let mut slots: HashMap<Hashed<'_>, u32, BuildHasherDefault<Prehashed>> =
+        HashMap::with_capacity_and_hasher(keyed.len() / shards, Default::default());
+    let mut least: Vec<DVec3> = Vec::new();
+    for e in keyed.iter().filter(|e| shard_of(e.hash, shards) == s) {
+        let v = groups[e.g as usize][e.i as usize].vertices[e.k as usize];
+        let seen = Hashed {
+            hash: e.hash,
+            key: &e.key,
+        };
+        let slot = *slots.entry(seen).or_insert_with(|| {
+            least.push(v);
+            (least.len() - 1) as u32
+        });
+        let w = &mut least[slot as usize];
+        if lex_less(v, *w) {
+            *w = v;
+        }
+        e.slot.store(slot, Ordering::Relaxed);
+    }
+    least
+}
+
+/// Moves each keyed vertex of `polygons` (polygon `first` onwards of the group whose keyed
+/// vertices are `keyed`) to its key's least point, unless that is its own place, a neighbour's
+/// or further than `reach`.
+fn move_to_least(
+    polygons: &mut [Polygon],
+    first: usize,
+    keyed: &[Keyed],
+    least: &[Vec<DVec3>],
+    shards: usize,
+    reach: f64,
+) {
+    let start = keyed.partition_point(|e| (e.i as usize) < first);
+    for e in &keyed[start..] {
+        let Some(p) = polygons.get_mut(e.i as usize - first) else {
+            break;
+        };
+        let slot = e.slot.load(Ordering::Relaxed) as usize;
+        let w = least[shard_of(e.hash, shards)][slot];
+        let (n, k) = (p.vertices.len(), e.k as usize);
         let v = p.vertices[k];
         let (prev, next) = (p.vertices[(k + n - 1) % n], p.vertices[(k + 1) % n]);
         if w != v && w != prev && w != next && (w - v).length() <= reach {
@@ -77,10 +176,65 @@ pub(crate) fn share_near_parallel_vertices(groups: &mut [&mut Vec<Polygon>], eps
     }
 }
 
-/// The keyed vertices of polygon `i` of group `g`: (group, polygon, vertex, key).
-fn keys_of(g: usize, i: usize, p: &Polygon) -> impl Iterator<Item = (u32, u32, u32, Key)> + '_ {
-    (0..p.vertices.len())
-        .filter_map(move |k| key_of(p, k).map(|key| (g as u32, i as u32, k as u32, key)))
+/// A key as a map holds it: hashed once, and borrowed from its first vertex.
+struct Hashed<'a> {
+    hash: u64,
+    key: &'a Key,
+}
+
+impl Hash for Hashed<'_> {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        state.write_u64(self.hash);
+    }
+}
+
+impl PartialEq for Hashed<'_> {
+    fn eq(&self, other: &Self) -> bool {
+        self.key == other.key
+    }
+}
+
+impl Eq for Hashed<'_> {}
+
+/// A hasher that passes on the one word it is given: the key's own hash.
+#[derive(Default)]
+struct Prehashed(u64);
+
+impl Hasher for Prehashed {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = self.0.rotate_left(8) ^ u64::from(b);
+        }
+    }
+    fn write_u64(&mut self, x: u64) {
+        self.0 = x;
+    }
+}
+
+/// The keyed vertices of polygon `i` of group `g`, their keys hashed by `build`.
+fn keys_of<'a>(
+    build: &'a KeyedBuild,
+    g: usize,
+    i: usize,
+    p: &'a Polygon,
+) -> impl Iterator<Item = Keyed> + 'a {
+    (0..p.vertices.len()).filter_map(move |k| {
+        key_of(p, k).map(|key| {
+            let mut h = build.build_hasher();
+            key.iter().flatten().for_each(|&w| h.write_u64(w));
+            Keyed {
+                g: g as u32,
+                i: i as u32,
+                k: k as u32,
+                slot: AtomicU32::new(0),
+                hash: h.finish(),
+                key,
+            }
+        })
+    })
 }
 
 /// The sorted planes vertex `k` of `p` lies on, if both its edges' planes are known, the three
