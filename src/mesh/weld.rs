@@ -164,7 +164,7 @@ pub(crate) fn weld_within(points: &[DVec3], delta: f64, wide: &Wide) -> (Vec<DVe
         return (positions, first);
     }
     let (reps, rep_of) = if positions.len() >= LONE_FROM && rayon::current_num_threads() > 1 {
-        grid::lone_apart(&positions, delta, wide)
+        grid::lone_apart(&positions, delta, wide, rayon::current_num_threads())
     } else {
         grid::serial(&positions, delta, wide)
     };

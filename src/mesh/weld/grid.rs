@@ -111,7 +111,15 @@ const CHUNK: usize = 1 << 12;
 /// hashed from its block of cells; a position is lone when its block's slot counts one and the
 /// slots of the other blocks its neighbouring cells touch count none. A slot shared by two
 /// blocks only makes a position wrongly not lone, which costs time and changes no result.
-pub(super) fn lone_apart(positions: &[DVec3], delta: f64, wide: &Wide) -> (Vec<DVec3>, Vec<u32>) {
+///
+/// The walk over the rest is split into up to `parts` parts (see [`parts_apart`]) that run in
+/// parallel, each in order.
+pub(super) fn lone_apart(
+    positions: &[DVec3],
+    delta: f64,
+    wide: &Wide,
+    parts: usize,
+) -> (Vec<DVec3>, Vec<u32>) {
     let widest = wide.widest(delta);
     let cell_size = 64.0 * widest;
     let n = positions.len();
@@ -128,16 +136,28 @@ pub(super) fn lone_apart(positions: &[DVec3], delta: f64, wide: &Wide) -> (Vec<D
         .par_iter()
         .map(|&i| wide.reach(positions[i as usize], delta))
         .collect();
-    // Each position's representative, as a position index (a representative is its own).
+    // Each position's representative, as a position index (a representative is its own). The
+    // walk over the rest runs in parts that cannot reach each other, in parallel.
     let mut rep_at: Vec<u32> = (0..n as u32).into_par_iter().collect();
-    let mut grid = Grid::new(rest.len(), cell_size, widest);
-    let mut rep_position: Vec<u32> = Vec::with_capacity(rest.len());
-    for (&i, &r) in rest.iter().zip(&reach) {
-        let (k, new) = grid.join(positions[i as usize], cells[i as usize], r);
-        if new {
-            rep_position.push(i);
+    let walk = |part: &[u32]| -> Vec<u32> {
+        let mut grid = Grid::new(part.len(), cell_size, widest);
+        let mut rep_position: Vec<u32> = Vec::with_capacity(part.len());
+        let joined = part.iter().map(|&j| {
+            let i = rest[j as usize];
+            let (k, new) = grid.join(positions[i as usize], cells[i as usize], reach[j as usize]);
+            if new {
+                rep_position.push(i);
+            }
+            rep_position[k as usize]
+        });
+        joined.collect()
+    };
+    let parts = parts_apart(&cells, &rest, parts);
+    let reps_of_parts: Vec<Vec<u32>> = parts.par_iter().map(|part| walk(part)).collect();
+    for (part, reps) in parts.iter().zip(&reps_of_parts) {
+        for (&j, &r) in part.iter().zip(reps) {
+            rep_at[rest[j as usize] as usize] = r;
         }
-        rep_at[i as usize] = rep_position[k as usize];
     }
     // Representatives numbered in position order: per chunk, the count before it.
     let is_rep = |chunk: usize, j: usize, r: u32| r as usize == chunk * CHUNK + j;
@@ -178,6 +198,53 @@ pub(super) fn lone_apart(positions: &[DVec3], delta: f64, wide: &Wide) -> (Vec<D
         .collect();
     let rep_of = rep_at.par_iter().map(|&r| number[r as usize]).collect();
     (reps, rep_of)
+}
+
+/// From this many positions that are not lone, their walk is split into parts.
+const PARTS_FROM: usize = 1 << 10;
+
+/// The positions `rest` (indices into `cells`, in order) in up to `parts` parts that cannot
+/// reach each other, as indices into `rest`, each part in order: split at cell coordinates of
+/// one axis that no position of `rest` occupies, nearest equal counts. A position looks only at
+/// cells one step from its own, so positions on either side of an empty cell coordinate never
+/// meet, and each part's walk on its own gives what the walk over all of `rest` gives. One part
+/// below [`PARTS_FROM`] positions, or where no axis has such a coordinate.
+fn parts_apart(cells: &[[i64; 3]], rest: &[u32], parts: usize) -> Vec<Vec<u32>> {
+    let all = || vec![(0..rest.len() as u32).collect()];
+    if parts < 2 || rest.len() < PARTS_FROM {
+        return all();
+    }
+    for axis in [0, 1, 2] {
+        let mut xs: Vec<i64> = rest.iter().map(|&i| cells[i as usize][axis]).collect();
+        xs.sort_unstable();
+        // Coordinates no position has: one more than a coordinate followed by a gap, the one
+        // nearest each quantile.
+        let gap_after = |j: usize| i128::from(xs[j + 1]) - i128::from(xs[j]) >= 2;
+        let mut cuts: Vec<i64> = (1..parts)
+            .filter_map(|q| {
+                let m = xs.len() * q / parts;
+                let up = (m..xs.len() - 1).find(|&j| gap_after(j));
+                let down = (0..m.min(xs.len() - 1)).rev().find(|&j| gap_after(j));
+                let nearest = match (down, up) {
+                    (Some(d), Some(u)) => Some(if m - d <= u - m { d } else { u }),
+                    (d, u) => d.or(u),
+                };
+                nearest.map(|j| xs[j] + 1)
+            })
+            .collect();
+        cuts.sort_unstable();
+        cuts.dedup();
+        if cuts.is_empty() {
+            continue;
+        }
+        let mut out: Vec<Vec<u32>> = vec![Vec::new(); cuts.len() + 1];
+        for (j, &i) in rest.iter().enumerate() {
+            let x = cells[i as usize][axis];
+            out[cuts.partition_point(|&c| c < x)].push(j as u32);
+        }
+        return out;
+    }
+    all()
 }
 
 /// Per cell of `cells` (one per distinct position, repeats allowed): whether it is the only one

@@ -46,19 +46,24 @@ fn soups() -> Vec<(Vec<DVec3>, f64, Wide)> {
 }
 
 /// The grid pass with its lone positions apart gives the serial pass's representatives and
-/// numbering bit for bit, and the soups have both lone positions and others.
+/// numbering bit for bit, its walk in one part or split into several, and the soups have both
+/// lone positions and others.
 #[test]
 fn lone_apart_is_the_serial_pass() {
     for (k, (positions, delta, wide)) in soups().iter().enumerate() {
         let (serial_reps, serial_of) = serial(positions, *delta, wide);
-        let (reps, rep_of) = lone_apart(positions, *delta, wide);
         let bits = |v: &[DVec3]| {
             v.iter()
                 .map(|p| p.to_array().map(f64::to_bits))
                 .collect::<Vec<_>>()
         };
-        assert_eq!(bits(&serial_reps), bits(&reps), "soup {k}");
-        assert_eq!(serial_of, rep_of, "soup {k}");
+        let mut reps = Vec::new();
+        for parts in [1, 2, 3, 8] {
+            let (r, rep_of) = lone_apart(positions, *delta, wide, parts);
+            assert_eq!(bits(&serial_reps), bits(&r), "soup {k}, {parts} parts");
+            assert_eq!(serial_of, rep_of, "soup {k}, {parts} parts");
+            reps = r;
+        }
         assert!(
             reps.len() < positions.len(),
             "soup {k}: some positions weld"
@@ -113,4 +118,45 @@ fn a_lone_cell_has_no_neighbour() {
         "40 apart at the bottom end (blocks of 16 cells)"
     );
     assert!(marked > 100, "{marked} marked lone");
+}
+
+/// The walk's parts: every position that is not lone in exactly one part, in order, no cell of
+/// one part within a step of another part's on the split axis; the larger soups do split.
+#[test]
+fn parts_cannot_reach_each_other() {
+    let mut split = 0;
+    for (k, (positions, delta, wide)) in soups().iter().enumerate() {
+        let cell_size = 64.0 * wide.widest(*delta);
+        let cells: Vec<[i64; 3]> = positions.iter().map(|&p| cell_of(p, cell_size)).collect();
+        let lone = lone_cells(&cells, &FxBuild::default());
+        let rest: Vec<u32> = (0..cells.len() as u32)
+            .filter(|&i| !lone[i as usize])
+            .collect();
+        for want in [2, 3, 8] {
+            let parts = parts_apart(&cells, &rest, want);
+            assert!(parts.len() <= want, "soup {k}: {} parts", parts.len());
+            let mut all: Vec<u32> = parts.concat();
+            assert!(parts.iter().all(|p| p.is_sorted()), "soup {k}");
+            all.sort_unstable();
+            assert_eq!(all, (0..rest.len() as u32).collect::<Vec<_>>(), "soup {k}");
+            if parts.len() > 1 {
+                split += 1;
+            }
+            // No two positions of different parts within a step on every axis.
+            let near = |a: [i64; 3], b: [i64; 3]| {
+                (0..3).all(|d| (i128::from(a[d]) - i128::from(b[d])).abs() <= 1)
+            };
+            for (x, p) in parts.iter().enumerate() {
+                for q in &parts[x + 1..] {
+                    for &a in p {
+                        for &b in q {
+                            let (a, b) = (rest[a as usize], rest[b as usize]);
+                            assert!(!near(cells[a as usize], cells[b as usize]), "soup {k}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(split >= 6, "{split} splits");
 }
