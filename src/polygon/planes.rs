@@ -8,16 +8,16 @@ use glam::DVec3;
 use crate::geom::Plane;
 use crate::hash::{KeyedHashMap, key};
 
+use super::dd::{self, Dd};
 use super::{Polygon, UNKNOWN};
 
 /// The point where three planes meet, the same bits whichever order they come in and whichever
 /// way they face: `None` where they do not meet in one point.
 ///
-/// Of the three, the two closest to parallel give a line (the one whose position is least
-/// certain: a rounding error over their angle), which the third cuts. Every point on the line
-/// where two nearly coincident faces cross is so computed from one and the same line, so all of
-/// them, from either operand, lie on it; cut at the third plane, each is as certain as that
-/// plane's angle to the line allows.
+/// Solved relative to one of the two closest to parallel, in double-double (see [`solve`]), so
+/// every point on the line where two nearly coincident faces cross lies on the line of the two
+/// planes as stored, to the rounding of the point itself, whichever operand computes it, and
+/// where three nearly parallel planes meet, their three lines pass through the one point.
 pub(crate) fn meet(p: &Plane, q: &Plane, r: &Plane) -> Option<DVec3> {
     let mut planes = [canonical(p), canonical(q), canonical(r)];
     planes.sort_by_key(plane_bits);
@@ -30,19 +30,40 @@ pub(crate) fn meet(p: &Plane, q: &Plane, r: &Plane) -> Option<DVec3> {
             s.total_cmp(&t)
         })
         .expect("three pairs");
-    let (on_line, d) = line_of(&planes[i], &planes[j])?;
-    let pk = &planes[k];
-    let slope = pk.normal.dot(d);
-    if slope == 0.0 {
-        return None;
+    solve(&planes[i], &planes[j], &planes[k])
+}
+
+/// The point on planes `pi`, `pj` and `pk`, relative to `pi`'s anchor and `pi`'s normal: `y`
+/// with `nᵢ · y = 0`, `(nⱼ − nᵢ) · y = hⱼ` and `(nₖ − nᵢ) · y = hₖ`, where `hₓ = nₓ · (aₓ − aᵢ)`
+/// (each normal facing the way `nᵢ` does), by Cramer's rule in double-double.
+///
+/// For nearly parallel planes the differences of the normals are exact and every product is
+/// carried to about 106 bits, so the point is the meet of the three planes as stored, rounded
+/// once. In doubles it was not: the line of two planes crossing at a sine `s` lies a rounding
+/// error over `s` across their faces (ε · 0.3 / 1.5·10⁻¹¹ ≈ 5·10⁻⁶ for a sphere's facets turned
+/// 10⁻⁹°), and a third nearly parallel plane cut it a rounding error over *its* sine further
+/// along, so the three lines of three such planes, each computed alone, did not pass through
+/// one point: where one operand's face was cut along two of them from their meet and the
+/// other's along the third, the cuts parted by up to 10⁻⁶ (three copies of a sphere, two turned
+/// 10⁻⁹° about different axes, intersected: 606 boundary edges).
+fn solve(pi: &Plane, pj: &Plane, pk: &Plane) -> Option<DVec3> {
+    let ni = pi.normal;
+    let (nj, nk) = (aligned(pj.normal, ni), aligned(pk.normal, ni));
+    let h = |n: DVec3, a: DVec3| dd::dot(n, dd::diff(a, pi.anchor));
+    let (hj, hk) = (h(nj, pj.anchor), h(nk, pk.anchor));
+    let (mj, mk) = (nj - ni, nk - ni);
+    let det = dd::dot(ni, dd::cross(mj, mk));
+    let (cj, ck) = (dd::cross(mk, ni), dd::cross(ni, mj));
+    let mut x = [0.0; 3];
+    for (axis, out) in x.iter_mut().enumerate() {
+        let y = hj.mul(cj[axis]).add(hk.mul(ck[axis])).div(det)?;
+        *out = Dd::from(pi.anchor[axis]).add(y).value();
     }
-    let t = pk.normal.dot(pk.anchor - on_line) / slope;
-    let x = on_line + d * t;
+    let x = DVec3::from_array(x);
     x.is_finite().then_some(x)
 }
 
-/// The line where two planes cross, as a point on it and its direction (the cross product of
-/// the normals, up to sign, not normalised): `pi` and `pj` canonical (see [`canonical`]) and sorted by
+/// A point on the line where two planes cross: `pi` and `pj` canonical (see [`canonical`]) and sorted by
 /// [`plane_bits`], so every caller gets the same bits for the same pair. `None` for parallel
 /// planes.
 ///
@@ -51,18 +72,20 @@ pub(crate) fn meet(p: &Plane, q: &Plane, r: &Plane) -> Option<DVec3> {
 /// terms near 1 to leave an error of ε in each component, the direction off by ε over the
 /// sine (2e-7 rad at 5.9e-10), so that points on it drifted off the line `Crossing::side`
 /// judges by (2e-7 across a unit face).
-fn line_of(pi: &Plane, pj: &Plane) -> Option<(DVec3, DVec3)> {
+fn line_of(pi: &Plane, pj: &Plane) -> Option<DVec3> {
     let nj = aligned(pj.normal, pi.normal);
     let d = pi.normal.cross(nj - pi.normal);
-    let dd = d.length_squared();
-    if dd == 0.0 || !dd.is_finite() {
+    let len2 = d.length_squared();
+    if len2 == 0.0 || !len2.is_finite() {
         return None;
     }
-    // From `pi`'s anchor: the point of the line nearest it.
+    // From `pi`'s anchor: the point of the line nearest it. The planes' distance apart there
+    // is carried to double-double: in doubles it is off by ε |aⱼ − aᵢ|, which across the line
+    // is that over the sine (5·10⁻⁶ at 1.5·10⁻¹¹; see [`solve`]).
     let o = pi.anchor;
-    let h = nj.dot(pj.anchor - o);
-    let on_line = o + d.cross(pi.normal) * (h / dd);
-    on_line.is_finite().then_some((on_line, d))
+    let h = dd::dot(nj, dd::diff(pj.anchor, o)).value();
+    let on_line = o + d.cross(pi.normal) * (h / len2);
+    on_line.is_finite().then_some(on_line)
 }
 
 /// Where two nearly parallel planes cross, once for both: the point on their crossing line
@@ -91,7 +114,7 @@ impl Crossing {
         } else {
             (&c, &o)
         };
-        let (on_line, _) = line_of(first, second)?;
+        let on_line = line_of(first, second)?;
         // Both facing the way the first does, so the two planes' crossings agree to the bit.
         let (own_n, cut_n) = (
             aligned(o.normal, first.normal),
