@@ -9,15 +9,19 @@ use crate::geom::Plane;
 use crate::hash::{KeyedHashMap, key};
 
 use super::dd::{self, Dd};
+use super::side::NEAR_PARALLEL;
 use super::{Polygon, UNKNOWN};
 
 /// The point where three planes meet, the same bits whichever order they come in and whichever
 /// way they face: `None` where they do not meet in one point.
 ///
-/// Solved relative to one of the two closest to parallel, in double-double (see [`solve`]), so
-/// every point on the line where two nearly coincident faces cross lies on the line of the two
-/// planes as stored, to the rounding of the point itself, whichever operand computes it, and
-/// where three nearly parallel planes meet, their three lines pass through the one point.
+/// Of the three, the two closest to parallel give a line (the one whose position is least
+/// certain: a rounding error over their angle), which the third cuts. Every point on the line
+/// where two nearly coincident faces cross is so computed from one and the same line, so all of
+/// them, from either operand, lie on it; cut at the third plane, each is as certain as that
+/// plane's angle to the line allows. Where the third crosses both of the others below
+/// [`NEAR_PARALLEL`] too, that angle is about their sines' product and the cut a rounding error
+/// over it along the line: the three are solved in double-double instead (see [`solve`]).
 pub(crate) fn meet(p: &Plane, q: &Plane, r: &Plane) -> Option<DVec3> {
     let mut planes = [canonical(p), canonical(q), canonical(r)];
     planes.sort_by_key(plane_bits);
@@ -30,7 +34,19 @@ pub(crate) fn meet(p: &Plane, q: &Plane, r: &Plane) -> Option<DVec3> {
             s.total_cmp(&t)
         })
         .expect("three pairs");
-    solve(&planes[i], &planes[j], &planes[k])
+    let sine = |a: &Plane, b: &Plane| a.normal.cross(b.normal).length();
+    let (pi, pj, pk) = (&planes[i], &planes[j], &planes[k]);
+    if sine(pi, pk).max(sine(pj, pk)) < NEAR_PARALLEL {
+        return solve(pi, pj, pk);
+    }
+    let (on_line, d) = line_of(pi, pj)?;
+    let slope = pk.normal.dot(d);
+    if slope == 0.0 {
+        return None;
+    }
+    let t = pk.normal.dot(pk.anchor - on_line) / slope;
+    let x = on_line + d * t;
+    x.is_finite().then_some(x)
 }
 
 /// The point on planes `pi`, `pj` and `pk`, relative to `pi`'s anchor and `pi`'s normal: `y`
@@ -63,7 +79,8 @@ fn solve(pi: &Plane, pj: &Plane, pk: &Plane) -> Option<DVec3> {
     x.is_finite().then_some(x)
 }
 
-/// A point on the line where two planes cross: `pi` and `pj` canonical (see [`canonical`]) and sorted by
+/// The line where two planes cross, as a point on it and its direction (the cross product of
+/// the normals, up to sign, not normalised): `pi` and `pj` canonical (see [`canonical`]) and sorted by
 /// [`plane_bits`], so every caller gets the same bits for the same pair. `None` for parallel
 /// planes.
 ///
@@ -72,7 +89,7 @@ fn solve(pi: &Plane, pj: &Plane, pk: &Plane) -> Option<DVec3> {
 /// terms near 1 to leave an error of ε in each component, the direction off by ε over the
 /// sine (2e-7 rad at 5.9e-10), so that points on it drifted off the line `Crossing::side`
 /// judges by (2e-7 across a unit face).
-fn line_of(pi: &Plane, pj: &Plane) -> Option<DVec3> {
+fn line_of(pi: &Plane, pj: &Plane) -> Option<(DVec3, DVec3)> {
     let nj = aligned(pj.normal, pi.normal);
     let d = pi.normal.cross(nj - pi.normal);
     let len2 = d.length_squared();
@@ -85,7 +102,7 @@ fn line_of(pi: &Plane, pj: &Plane) -> Option<DVec3> {
     let o = pi.anchor;
     let h = dd::dot(nj, dd::diff(pj.anchor, o)).value();
     let on_line = o + d.cross(pi.normal) * (h / len2);
-    on_line.is_finite().then_some(on_line)
+    on_line.is_finite().then_some((on_line, d))
 }
 
 /// Where two nearly parallel planes cross, once for both: the point on their crossing line
@@ -114,7 +131,7 @@ impl Crossing {
         } else {
             (&c, &o)
         };
-        let on_line = line_of(first, second)?;
+        let (on_line, _) = line_of(first, second)?;
         // Both facing the way the first does, so the two planes' crossings agree to the bit.
         let (own_n, cut_n) = (
             aligned(o.normal, first.normal),
