@@ -63,28 +63,39 @@ fn two_spheres_turned_a_hair_intersect_closed() {
     assert_closed_sphere(&(&ab & &c), "mesh(a ∩ b) ∩ c");
 }
 
-/// (a ∩ b) ∩ c: 1318 triangles, 33 shells, 606 boundary edges, mesh volume 1.1931 against the
-/// solid's 1.28184136 (itself 1.3e-7 below the sphere's 1.28184149, so the clip's polygons
-/// already do not close). Fails alike with the turns at 1e-10° … 1e-7° (at 1e-10° the solid is
-/// 1.8e-3 off; (a ∪ b) ∪ c at 1e-9° is 4e-4 off), closes at 1e-11° (the turned planes are
-/// the unturned ones to rounding) and at 1e-5°; with the axes rounded to four digits it fails
-/// too (603 and 574 boundary edges).
+/// (a ∩ b) ∩ c was 1318 triangles, 33 shells, 606 boundary edges, the mesh's volume 1.1931
+/// against the solid's 1.28184136 (itself 1.3e-7 below the sphere's 1.28184149, so the clip's
+/// polygons did not close). It failed alike with the turns at 1e-10° … 1e-7°, closed at 1e-11°
+/// (the turned planes the unturned ones to rounding) and at 1e-5°.
 ///
 /// Traced to the clip: each pair closes, and (a ∩ b)'s mesh read back closes against c
-/// ([`two_spheres_turned_a_hair_intersect_closed`]); what fails is c cutting the *fragments*
+/// ([`two_spheres_turned_a_hair_intersect_closed`]); what failed is c cutting the *fragments*
 /// a ∩ b leaves, each facet split into pieces of a's plane and pieces of b's. Summed per facet
-/// of c, the polygons of a ∩ b cover each facet to 1e-12 of its area; those of (a ∩ b) ∩ c
-/// miss or double over 1e-9 (up to 2.3e-7) on 102 of the 135 facets (facet 71: 11 pieces of
-/// three planes, 1.6e-7 short), against the 1e-12 that gaps 1e-11 thick could explain. The
-/// planes cross at sines near 1.5e-11, inside the band between `PARALLEL_BELOW` (5e-13) and
-/// `NEAR_PARALLEL`, where their crossing line is known only to a rounding error over the sine
-/// (1e-16 / 1.5e-11, ~1e-5 across the facet) and each fragment judges its corners against it
-/// alone (the limit `PARALLEL_BELOW`'s doc in `polygon/side.rs` describes for one cut face):
-/// a's pieces cut by c and c's pieces cut by a and by b end up to ~1e-5 apart along the facet,
-/// leaving gaps and overlaps of ~1e-7 no weld closes. The repair then loses whole regions.
+/// of c, the polygons of (a ∩ b) ∩ c missed or doubled over 1e-9 (up to 2.3e-7) on 102 of the
+/// 135 facets. The three planes of a facet cross at sines near 1.5e-11, and where they meet
+/// (facet 71: inside it) a's pieces are cut along the line a ∩ c from that meet, c's along
+/// the same line from the same meet, each to its own fragments' corners on the line. In doubles
+/// each line of two such planes lay a rounding error over the sine across the face (ε · 0.3 /
+/// 1.5e-11 ≈ 5e-6), and the meet of the three, computed on the line a ∩ b, lay about 5e-6 off
+/// the line a ∩ c: the two cuts from it to corners 0.08 away on the line parted by 1.1e-6,
+/// a sliver of 4.6e-8 no weld closes. The meet and the line's point are now computed in
+/// double-double (`meet` and `Crossing` in `polygon/planes.rs`): the three lines pass through
+/// the meet to rounding, and the intersection closes with its volume the sphere's to 1e-11.
 #[test]
-#[ignore = "open: near-coplanar — three copies of a sphere, two turned 1e-9° about different axes, intersect to a mesh with 606 boundary edges and 7 % of the volume lost (any two close)"]
 fn three_spheres_turned_a_hair_about_different_axes_intersect_closed() {
     let [a, b, c] = spheres();
     assert_closed_sphere(&(&(&a & &b) & &c), "(a ∩ b) ∩ c");
+}
+
+/// (a ∪ b) ∪ c: 292 triangles, 4 shells, not closed, the mesh's volume 1.27926 against the
+/// solid's 1.28234 (the sphere's 1.28184149). Summed per facet of c as for the intersection
+/// above, three facets are off (15: +3.0e-6, 16: +2.2e-3, 113: +9.4e-8); on facet 16 c's
+/// pieces over 2.2e-3 of the facet lie where a's plane is outermost, beside a's piece there
+/// (the region doubled), bounded by none of the three planes' crossing lines: a decision of the
+/// union's tree about fragments of c, not the placing of the lines. Not traced further.
+#[test]
+#[ignore = "open: near-coplanar — three copies of a sphere, two turned 1e-9° about different axes, unite to a mesh of 4 shells, not closed, 2e-3 of its volume lost (the intersection closes)"]
+fn three_spheres_turned_a_hair_about_different_axes_unite_closed() {
+    let [a, b, c] = spheres();
+    assert_closed_sphere(&(&(&a | &b) | &c), "(a ∪ b) ∪ c");
 }

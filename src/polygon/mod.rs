@@ -8,6 +8,7 @@ use smallvec::SmallVec;
 use crate::geom::{Aabb, Plane};
 
 mod axis;
+mod dd;
 mod faces;
 mod planes;
 mod shared;

@@ -8,6 +8,8 @@ use glam::DVec3;
 use crate::geom::Plane;
 use crate::hash::{KeyedHashMap, key};
 
+use super::dd::{self, Dd};
+use super::side::NEAR_PARALLEL;
 use super::{Polygon, UNKNOWN};
 
 /// The point where three planes meet, the same bits whichever order they come in and whichever
@@ -17,7 +19,9 @@ use super::{Polygon, UNKNOWN};
 /// certain: a rounding error over their angle), which the third cuts. Every point on the line
 /// where two nearly coincident faces cross is so computed from one and the same line, so all of
 /// them, from either operand, lie on it; cut at the third plane, each is as certain as that
-/// plane's angle to the line allows.
+/// plane's angle to the line allows. Where the third crosses both of the others below
+/// [`NEAR_PARALLEL`] too, that angle is about their sines' product and the cut a rounding error
+/// over it along the line: the three are solved in double-double instead (see [`solve`]).
 pub(crate) fn meet(p: &Plane, q: &Plane, r: &Plane) -> Option<DVec3> {
     let mut planes = [canonical(p), canonical(q), canonical(r)];
     planes.sort_by_key(plane_bits);
@@ -30,14 +34,48 @@ pub(crate) fn meet(p: &Plane, q: &Plane, r: &Plane) -> Option<DVec3> {
             s.total_cmp(&t)
         })
         .expect("three pairs");
-    let (on_line, d) = line_of(&planes[i], &planes[j])?;
-    let pk = &planes[k];
+    let sine = |a: &Plane, b: &Plane| a.normal.cross(b.normal).length();
+    let (pi, pj, pk) = (&planes[i], &planes[j], &planes[k]);
+    if sine(pi, pk).max(sine(pj, pk)) < NEAR_PARALLEL {
+        return solve(pi, pj, pk);
+    }
+    let (on_line, d) = line_of(pi, pj)?;
     let slope = pk.normal.dot(d);
     if slope == 0.0 {
         return None;
     }
     let t = pk.normal.dot(pk.anchor - on_line) / slope;
     let x = on_line + d * t;
+    x.is_finite().then_some(x)
+}
+
+/// The point on planes `pi`, `pj` and `pk`, relative to `pi`'s anchor and `pi`'s normal: `y`
+/// with `nᵢ · y = 0`, `(nⱼ − nᵢ) · y = hⱼ` and `(nₖ − nᵢ) · y = hₖ`, where `hₓ = nₓ · (aₓ − aᵢ)`
+/// (each normal facing the way `nᵢ` does), by Cramer's rule in double-double.
+///
+/// For nearly parallel planes the differences of the normals are exact and every product is
+/// carried to about 106 bits, so the point is the meet of the three planes as stored, rounded
+/// once. In doubles it was not: the line of two planes crossing at a sine `s` lies a rounding
+/// error over `s` across their faces (ε · 0.3 / 1.5·10⁻¹¹ ≈ 5·10⁻⁶ for a sphere's facets turned
+/// 10⁻⁹°), and a third nearly parallel plane cut it a rounding error over *its* sine further
+/// along, so the three lines of three such planes, each computed alone, did not pass through
+/// one point: where one operand's face was cut along two of them from their meet and the
+/// other's along the third, the cuts parted by up to 10⁻⁶ (three copies of a sphere, two turned
+/// 10⁻⁹° about different axes, intersected: 606 boundary edges).
+fn solve(pi: &Plane, pj: &Plane, pk: &Plane) -> Option<DVec3> {
+    let ni = pi.normal;
+    let (nj, nk) = (aligned(pj.normal, ni), aligned(pk.normal, ni));
+    let h = |n: DVec3, a: DVec3| dd::dot(n, dd::diff(a, pi.anchor));
+    let (hj, hk) = (h(nj, pj.anchor), h(nk, pk.anchor));
+    let (mj, mk) = (nj - ni, nk - ni);
+    let det = dd::dot(ni, dd::cross(mj, mk));
+    let (cj, ck) = (dd::cross(mk, ni), dd::cross(ni, mj));
+    let mut x = [0.0; 3];
+    for (axis, out) in x.iter_mut().enumerate() {
+        let y = hj.mul(cj[axis]).add(hk.mul(ck[axis])).div(det)?;
+        *out = Dd::from(pi.anchor[axis]).add(y).value();
+    }
+    let x = DVec3::from_array(x);
     x.is_finite().then_some(x)
 }
 
@@ -54,14 +92,16 @@ pub(crate) fn meet(p: &Plane, q: &Plane, r: &Plane) -> Option<DVec3> {
 fn line_of(pi: &Plane, pj: &Plane) -> Option<(DVec3, DVec3)> {
     let nj = aligned(pj.normal, pi.normal);
     let d = pi.normal.cross(nj - pi.normal);
-    let dd = d.length_squared();
-    if dd == 0.0 || !dd.is_finite() {
+    let len2 = d.length_squared();
+    if len2 == 0.0 || !len2.is_finite() {
         return None;
     }
-    // From `pi`'s anchor: the point of the line nearest it.
+    // From `pi`'s anchor: the point of the line nearest it. The planes' distance apart there
+    // is carried to double-double: in doubles it is off by ε |aⱼ − aᵢ|, which across the line
+    // is that over the sine (5·10⁻⁶ at 1.5·10⁻¹¹; see [`solve`]).
     let o = pi.anchor;
-    let h = nj.dot(pj.anchor - o);
-    let on_line = o + d.cross(pi.normal) * (h / dd);
+    let h = dd::dot(nj, dd::diff(pj.anchor, o)).value();
+    let on_line = o + d.cross(pi.normal) * (h / len2);
     on_line.is_finite().then_some((on_line, d))
 }
 
