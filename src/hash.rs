@@ -11,6 +11,9 @@
 //!   makes welding quadratic (a 1M-vertex OBJ took 300 s instead of 1.6 s). Keyed per process
 //!   with random keys, a collision found for one run says nothing about the next.
 //!
+//! Where a key's hash is wanted for more than one map (to shard the keys, say), it is made once
+//! by one of the two and a [`PrehashedMap`] passes it on.
+//!
 //! Neither map type is ever iterated where its order would reach the output, so the random keys
 //! never make results differ between runs.
 
@@ -115,6 +118,29 @@ impl BuildHasher for KeyedBuild {
 
 /// A map keyed by positions from input (see [`key`]) or cells of them.
 pub(crate) type KeyedHashMap<K, V> = HashMap<K, V, KeyedBuild>;
+
+/// A hasher for keys hashed already: it passes on the one word it is given (a key type for a
+/// [`PrehashedMap`] writes its hash with `write_u64` and nothing else).
+#[derive(Default)]
+pub(crate) struct Prehashed(u64);
+
+impl std::hash::Hasher for Prehashed {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = self.0.rotate_left(8) ^ u64::from(b);
+        }
+    }
+    #[inline]
+    fn write_u64(&mut self, x: u64) {
+        self.0 = x;
+    }
+}
+
+/// A map whose keys carry their own hash (see [`Prehashed`]).
+pub(crate) type PrehashedMap<K, V> = HashMap<K, V, BuildHasherDefault<Prehashed>>;
 
 /// The key of a position: its bits, with −0 folded onto +0.
 #[inline]

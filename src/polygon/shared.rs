@@ -1,15 +1,14 @@
 //! Vertices on three planes, two of them nearly parallel, made one point for both operands of
 //! a boolean.
 
-use std::collections::HashMap;
-use std::hash::{BuildHasher, BuildHasherDefault, Hash, Hasher};
+use std::hash::{BuildHasher, Hash, Hasher};
 use std::sync::atomic::{AtomicU32, Ordering};
 
 use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::geom::Plane;
-use crate::hash::KeyedBuild;
+use crate::hash::{KeyedBuild, PrehashedMap};
 
 use super::Polygon;
 use super::planes::{canonical, plane_bits};
@@ -127,8 +126,8 @@ fn least_in_shard(
     s: usize,
     shards: usize,
 ) -> Vec<DVec3> {
-    let mut slots: HashMap<Hashed<'_>, u32, BuildHasherDefault<Prehashed>> =
-        HashMap::with_capacity_and_hasher(keyed.len() / shards, Default::default());
+    let mut slots: PrehashedMap<Hashed<'_>, u32> =
+        PrehashedMap::with_capacity_and_hasher(keyed.len() / shards, Default::default());
     let mut least: Vec<DVec3> = Vec::new();
     for e in keyed.iter().filter(|e| shard_of(e.hash, shards) == s) {
         let v = groups[e.g as usize][e.i as usize].vertices[e.k as usize];
@@ -195,24 +194,6 @@ impl PartialEq for Hashed<'_> {
 }
 
 impl Eq for Hashed<'_> {}
-
-/// A hasher that passes on the one word it is given: the key's own hash.
-#[derive(Default)]
-struct Prehashed(u64);
-
-impl Hasher for Prehashed {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 = self.0.rotate_left(8) ^ u64::from(b);
-        }
-    }
-    fn write_u64(&mut self, x: u64) {
-        self.0 = x;
-    }
-}
 
 /// The keyed vertices of polygon `i` of group `g`, their keys hashed by `build`.
 fn keys_of<'a>(
