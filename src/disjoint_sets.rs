@@ -30,13 +30,7 @@ impl DisjointSets {
         };
         let mut root = self.find(first);
         for &x in &items[1..] {
-            // Already a child of the root (most calls, on a mesh's triangles): nothing to do,
-            // and nothing `find` would have changed.
-            if self.parent[x] == root {
-                continue;
-            }
-            let other = self.find(x);
-            root = self.link(root, other);
+            root = self.join(root, x);
         }
     }
 
@@ -45,7 +39,8 @@ impl DisjointSets {
     /// root.
     pub fn join(&mut self, root: usize, x: usize) -> usize {
         debug_assert_eq!(self.parent[root], root);
-        // Already a child of the root: nothing to do, and nothing `find` would have changed.
+        // Already a child of the root (most calls, on a mesh's triangles): nothing to do, and
+        // nothing `find` would have changed.
         if self.parent[x] == root {
             return root;
         }

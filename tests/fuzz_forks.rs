@@ -425,10 +425,10 @@ fn the_crossing_line_band_leaves_a_flat_shell() {
 /// 1886ef4e (a cylinder turned 1e-9° ∩ a 15×9 sphere turned 1e-9° ∩ the sphere turned 1e-9°
 /// about another axis ∩ it unturned ∩ a box: step 2 open, 606 boundary edges) and 7acf667b (the
 /// same with turns of 1e-9°, 1e-8° and 1e-9° about three axes: step 2 the solid's volume
-/// 1.8e-8 above its operands') since the meet of three planes and the point of a crossing line
-/// are computed in double-double (`meet` and `Crossing` in `polygon/planes.rs`): the three
-/// lines where a facet's three nearly parallel planes cross (at sines near 1.5e-11) passed
-/// about 5e-6 beside each other's meet, and the cuts along them parted by up to 1e-6.
+/// 1.8e-8 above its operands') since the meet of three planes that all cross below
+/// `NEAR_PARALLEL` is solved in double-double (`meet` in `polygon/planes.rs`): computed on one
+/// of the lines where a facet's three nearly parallel planes cross (at sines near 1.5e-11), it
+/// lay about 5e-6 beside another, and the cuts along them parted by up to 1e-6.
 /// Minimised in `three_turned_spheres.rs`.
 ///
 /// Also passing since the changes named at [`FORK_PASSING`]: the inputs not named above.

@@ -78,9 +78,11 @@ fn two_spheres_turned_a_hair_intersect_closed() {
 /// each line of two such planes lay a rounding error over the sine across the face (ε · 0.3 /
 /// 1.5e-11 ≈ 5e-6), and the meet of the three, computed on the line a ∩ b, lay about 5e-6 off
 /// the line a ∩ c: the two cuts from it to corners 0.08 away on the line parted by 1.1e-6,
-/// a sliver of 4.6e-8 no weld closes. The meet and the line's point are now computed in
-/// double-double (`meet` and `Crossing` in `polygon/planes.rs`): the three lines pass through
-/// the meet to rounding, and the intersection closes with its volume the sphere's to 1e-11.
+/// a sliver of 4.6e-8 no weld closes. Where all three planes cross below `NEAR_PARALLEL`, the
+/// meet is now solved from the three planes as stored, in double-double, and rounded once
+/// (`meet` in `polygon/planes.rs`); the lines' own points, still in doubles, lie within the
+/// rounding `Crossing::side` allows them, and the intersection closes with its volume the
+/// sphere's to 1e-11.
 #[test]
 fn three_spheres_turned_a_hair_about_different_axes_intersect_closed() {
     let [a, b, c] = spheres();

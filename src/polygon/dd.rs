@@ -1,7 +1,6 @@
 //! Double-double arithmetic (a value as the unevaluated sum of two `f64`s, about 106 bits), for
-//! the few quantities of nearly parallel planes that rounding to `f64` leaves uncertain by a
-//! rounding error over their angle: the position of their crossing line and where a third
-//! plane meets it (see [`super::planes::meet`]).
+//! the one quantity of nearly parallel planes that rounding to `f64` left uncertain beyond what
+//! the clip allows for: where three of them meet (see [`super::planes::meet`]).
 //!
 //! Products are split by Dekker's method rather than fused, so every platform gets the same
 //! bits.

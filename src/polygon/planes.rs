@@ -92,16 +92,14 @@ fn solve(pi: &Plane, pj: &Plane, pk: &Plane) -> Option<DVec3> {
 fn line_of(pi: &Plane, pj: &Plane) -> Option<(DVec3, DVec3)> {
     let nj = aligned(pj.normal, pi.normal);
     let d = pi.normal.cross(nj - pi.normal);
-    let len2 = d.length_squared();
-    if len2 == 0.0 || !len2.is_finite() {
+    let dd = d.length_squared();
+    if dd == 0.0 || !dd.is_finite() {
         return None;
     }
-    // From `pi`'s anchor: the point of the line nearest it. The planes' distance apart there
-    // is carried to double-double: in doubles it is off by ε |aⱼ − aᵢ|, which across the line
-    // is that over the sine (5·10⁻⁶ at 1.5·10⁻¹¹; see [`solve`]).
+    // From `pi`'s anchor: the point of the line nearest it.
     let o = pi.anchor;
-    let h = dd::dot(nj, dd::diff(pj.anchor, o)).value();
-    let on_line = o + d.cross(pi.normal) * (h / len2);
+    let h = nj.dot(pj.anchor - o);
+    let on_line = o + d.cross(pi.normal) * (h / dd);
     on_line.is_finite().then_some((on_line, d))
 }
 
