@@ -123,6 +123,14 @@ impl Work {
             }
         };
         consider(&mut flips, self.plan_flip(t, longest));
+        // Where the longest edge's flip does not help (a spike's, the neighbour's apex on the
+        // spike's line: the short edge and the needle would only move there), the other edges'
+        // flips, to the neighbours across them.
+        if flips.is_none() {
+            for k in (0..3).filter(|&k| k != longest) {
+                consider(&mut flips, self.plan_flip(t, k));
+            }
+        }
         for k in 0..3 {
             let (p, q) = (tri[k], tri[(k + 1) % 3]);
             consider(&mut collapses, self.plan_collapse(t, p, q));

@@ -22,10 +22,14 @@ impl Work {
         if !self.acceptable(new_t, normal) || !self.acceptable(new_u, normal) {
             return None;
         }
-        // Only a change that helps: the smaller of the two areas grows.
+        // Only a change that helps: the smaller of the two areas grows, out of the needles or
+        // to at least twice what it was. Flipping a spike's long edge keeps its short edge, in
+        // the new triangle whose third corner is the neighbour's apex: where that apex lies on
+        // the spike's line too, the needle only moves there, of the same area (round 18's
+        // b447eea7: 1.9709e-13 → 1.9710e-13, each flip a hair larger, until a stretch took it).
         let before = area(self.corners(tri)).min(area(self.corners(other)));
         let after = area(self.corners(new_t)).min(area(self.corners(new_u)));
-        if after <= before {
+        if after <= before || (after < self.threshold(tri) && after < 2.0 * before) {
             return None;
         }
         let apex = self.positions[v as usize];
