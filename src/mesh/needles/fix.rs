@@ -122,13 +122,13 @@ impl Work {
                 *best = Some((swept, op));
             }
         };
-        consider(&mut flips, self.plan_flip(t, longest));
-        // Where the longest edge's flip does not help (a spike's, the neighbour's apex on the
-        // spike's line: the short edge and the needle would only move there), the other edges'
-        // flips, to the neighbours across them.
-        if flips.is_none() {
+        consider(&mut flips, self.plan_flip(t, longest, short_edge));
+        // Where a spike's longest edge's flip does not help (the neighbour's apex on the
+        // spike's line: the short edge and the needle would only move there), the other
+        // edges' flips, to the neighbours across them.
+        if short_edge && flips.is_none() {
             for k in (0..3).filter(|&k| k != longest) {
-                consider(&mut flips, self.plan_flip(t, k));
+                consider(&mut flips, self.plan_flip(t, k, true));
             }
         }
         for k in 0..3 {
