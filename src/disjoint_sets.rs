@@ -40,6 +40,19 @@ impl DisjointSets {
         }
     }
 
+    /// Joins the set of `x` to the set whose root is `root` (what [`DisjointSets::union`] of a
+    /// member of that set and `x` does, with the root already known); returns the joined set's
+    /// root.
+    pub fn join(&mut self, root: usize, x: usize) -> usize {
+        debug_assert_eq!(self.parent[root], root);
+        // Already a child of the root: nothing to do, and nothing `find` would have changed.
+        if self.parent[x] == root {
+            return root;
+        }
+        let other = self.find(x);
+        self.link(root, other)
+    }
+
     /// Joins the sets of `a` and `b`; the smaller root wins, so a set's root is its first member.
     pub fn union(&mut self, a: usize, b: usize) {
         let (ra, rb) = (self.find(a), self.find(b));

@@ -462,6 +462,13 @@ fn the_round_20_fork_run_inputs_that_pass() {
 /// the cube's two faces and by the line where the box turned 1e-3° crosses that plane
 /// (diagonal, at a sine of about 1.4e-5), 6.7e-9 on a side: a piece of a thin wedge whose
 /// other face the clip did not keep, not a repair defect; not traced to that clip decision.
+/// e11e6f68 (a box turned 1e-5° ∪ a 0.125 cube ∪ a bar beside it turned 1e-10° ∪ a cuboid ∪ a
+/// slab through the cube turned 1e-8°: step 3 the solid 1.7e-5 above its mesh, open by 5.9e-4):
+/// the bar's bottom, 1.4e-12 rad from the cube's and behind it in the tree, reads the wedge
+/// between the two planes as outside across the cube, and the slab's bottom, crossing the two
+/// planes on lines 3.7e-3 apart, keeps the strip between over the cube beside the cube's own
+/// bottom; minimised (ignored) as
+/// `near_coplanar_corners::a_wedge_under_a_face_turned_a_hair_stays_inside_the_face_beside_it`.
 #[test]
 #[ignore = "open: near-coplanar — 8 inputs of round 20's fork run fail with tiny rotations on (3 not closed, 2 mesh volume off the solid's, 1 volume out of bounds, 2 needles), all pass with them off"]
 fn the_round_20_fork_run_near_coplanar_inputs() {

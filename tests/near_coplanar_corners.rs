@@ -210,3 +210,70 @@ fn a_corner_cut_on_a_face_is_on_its_flipped_twin() {
         mesh.volume()
     );
 }
+
+/// Round 20's fork input e11e6f68, minimised: a 0.125 cube ∪ a 0.75 × 0.125 × 0.125 bar beside
+/// it turned 10⁻¹⁰° (its bottom 1.4·10⁻¹² rad from the cube's, 5.7·10⁻¹³ above it over the
+/// cube, within `eps`), ∪ a 1.125 × 0.125 × 0.125 slab through both turned 10⁻⁸°.
+///
+/// Traced, not fixed. In the first union's tree the bar's bottom (sine 1.4·10⁻¹² to the cube's
+/// plane, above `PARALLEL_BELOW`, so banded, not coplanar) lies behind the cube's bottom; the
+/// cube's side faces, whose corners lie within `eps` in front of the bar's plane, go behind it by
+/// the tolerance alone (`Class::BackNear`), so its front leaf reads the wedge between the two
+/// planes as outside, across the cube too. The slab's bottom crosses the two planes on lines
+/// 3.7·10⁻³ apart (the band `eps / sine` is 8·10⁻³ wide there); the strip of it between them
+/// over the cube passes the cube's plane behind and the bar's in front, and is kept beside the
+/// cube's own bottom, which the slab's tree cut at the first line (the same on the top): the
+/// solid 2.6·10⁻⁵ above its mesh, open by 4.1·10⁻⁴.
+///
+/// Tried: passing a face node's own corners down to the side where a nearly parallel polygon
+/// went within `eps`, so the cube's sides follow into the bar's front subtree (as `Wedge`'s
+/// followers do) — this passes (open 5·10⁻¹⁶) but round 20's passing c095e8fc then fails (an
+/// extra follower subtree far off ends in an unbuilt cell, and a slab-top piece routed along
+/// the cube's top is labelled inside by its ray).
+#[test]
+#[ignore = "open: the union is open by 4.1e-4 (-y), the solid 2.6e-5 above its mesh: the wedge between the cube's bottom and the bar's, behind it in the tree, reads outside"]
+fn a_wedge_under_a_face_turned_a_hair_stays_inside_the_face_beside_it() {
+    let at = |solid: Solid| solid.translate(DVec3::splat(-0.5)).unwrap();
+    let cube = at(Solid::cube(0.125).unwrap());
+    let bar = Solid::cuboid(DVec3::new(0.75, 0.125, 0.125))
+        .unwrap()
+        .rotate(DQuat::from_axis_angle(
+            -DVec3::ONE.normalize(),
+            1e-10f64.to_radians(),
+        ))
+        .unwrap()
+        .translate(DVec3::new(0.0625, -0.5, -0.5))
+        .unwrap();
+    let axis = DVec3::new(
+        -0.986043261930034,
+        -0.14758676060535142,
+        0.07705085136711223,
+    );
+    let slab = at(Solid::cuboid(DVec3::new(1.125, 0.125, 0.125))
+        .unwrap()
+        .rotate(DQuat::from_axis_angle(axis, 1e-8f64.to_radians()))
+        .unwrap());
+    let result = &(&cube | &bar) | &slab;
+    let open: DVec3 = result
+        .polygons()
+        .iter()
+        .map(|p| p.plane().normal() * p.area())
+        .sum();
+    let mesh = result.to_mesh();
+    let report = mesh.report();
+    assert!(report.is_closed_manifold(), "{report}");
+    // The slab and the part of the bar beyond it (0.375 long): the turns move it by < 1e-10.
+    let want = 1.125 * 0.125 * 0.125 + 0.375 * 0.125 * 0.125;
+    assert!(open.length() < 1e-14, "the union is open by {open}");
+    assert!(
+        (mesh.volume() - want).abs() < 1e-10,
+        "mesh {}",
+        mesh.volume()
+    );
+    assert!(
+        (result.volume() - want).abs() < 1e-10,
+        "solid {} mesh {}",
+        result.volume(),
+        mesh.volume()
+    );
+}

@@ -242,9 +242,7 @@ impl Tree {
                     _ => label,
                 };
             }
-            let clear = self
-                .locate_stub(c)
-                .is_some_and(|(at, d)| at == stub && d > (CLEAR + 2.0) * self.eps);
+            let clear = self.locate_clear(c, (CLEAR + 2.0) * self.eps) == Some(stub);
             let local = self.stub_polygons(stub);
             let small = clear && local.len() <= LOCAL_MAX;
             let label = match labelled.get(&stub).copied() {
@@ -282,12 +280,8 @@ impl Tree {
         let clear = (CLEAR + 2.0) * self.eps + off;
         // The cell's polygons within it lie in its content box: a cheap test first.
         let content = self.nodes[stub as usize].content;
-        let inside = |p: DVec3| {
-            content.contains_point(p, 0.0)
-                && self
-                    .locate_stub(p)
-                    .is_some_and(|(at, d)| at == stub && d > clear)
-        };
+        let inside =
+            |p: DVec3| content.contains_point(p, 0.0) && self.locate_clear(p, clear) == Some(stub);
         for &g in local.iter().take(SEED_TRIES) {
             let poly = surface.polygon(g);
             let centroid = poly.centroid();

@@ -121,20 +121,22 @@ impl Tree {
         }
     }
 
-    /// [`Tree::locate`] from the root, and how far `p` lies from the nearest plane on its way:
-    /// the unbuilt cell holding `p` and that clearance, or `None` where the walk ends in a
-    /// leaf. Any point nearer to `p` than the clearance lies in the same cell.
-    pub fn locate_stub(&self, p: glam::DVec3) -> Option<(u32, f64)> {
+    /// [`Tree::locate`] from the root for a point farther than `bar` from every plane on its
+    /// way: the unbuilt cell holding `p`, or `None` where the walk ends in a leaf or passes a
+    /// plane within `bar` (it stops there). Any point nearer to `p` than `bar` then lies in the
+    /// same cell.
+    pub fn locate_clear(&self, p: glam::DVec3, bar: f64) -> Option<u32> {
         let mut link = self.root;
-        let mut clearance = f64::INFINITY;
         loop {
             let Link::Node(i) = link else { return None };
             let node = &self.nodes[i as usize];
             if matches!(node.kind, Kind::Stub { .. }) {
-                return Some((i, clearance));
+                return Some(i);
             }
             let d = node.plane.distance(p);
-            clearance = clearance.min(d.abs());
+            if d.abs() <= bar {
+                return None;
+            }
             link = if d >= 0.0 { node.front } else { node.back };
         }
     }

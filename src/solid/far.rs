@@ -55,6 +55,9 @@ pub(super) fn keep_far(
     let mut renumber = vec![u32::MAX; ids.vertex_count()];
     let mut far_count = 0u32;
     for (i, _) in near.iter().enumerate().filter(|(_, n)| !**n) {
+        // No earlier polygon's loop joins `i` (each joins polygons up to itself): it is its
+        // set's root here, and the root is followed as its corners join it to others.
+        let mut root = i;
         for &id in ids.corners(i) {
             let f = &mut first[id as usize];
             if *f == u32::MAX {
@@ -62,7 +65,7 @@ pub(super) fn keep_far(
                 renumber[id as usize] = far_count;
                 far_count += 1;
             } else {
-                groups.union(i, *f as usize);
+                root = groups.join(root, *f as usize);
             }
         }
     }
