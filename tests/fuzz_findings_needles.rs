@@ -68,3 +68,29 @@ fn union_with_a_slab_through_a_cube_less_a_cube_turned_1e_8_degrees_keeps_its_co
     );
     assert!((mesh.volume() - solid.volume()).abs() < 1e-9);
 }
+
+/// The round-18 fork run's b447eea7, minimised (80 bytes, most zeroed): a 1.125 × 1.125 × 1.5
+/// box turned 1e-6° ∪ a 0.125 cube (twice), − a cylinder (radius 0.75, 8 sides) turned 1e-3°,
+/// − an OBJ 1.125 × 1.5 × 1.5 box where the first box was: step 3 is four sliver shells where
+/// the turned box pokes out (8.2e-9 in all). On the one of 32 triangles, a spike of 1.26e-13
+/// (threshold 2.46e-12: edges 2.7e-5, 2.7e-5 and 2.4e-8, height 9.2e-9) whose short edge no
+/// collapse may take (link condition): flipping its longest edge kept the short edge, with the
+/// neighbour's apex, on the spike's line too, in its place: a needle of the same area (1.2578e-13
+/// → 1.2578e-13, counted as helping, the smaller area a hair larger). The next took a stretch
+/// off the box's face by 2.6e-7, changing the shell's volume by 2e-9, beyond 1 % of it: redone
+/// strict, then left whole with two needles. A flip now helps only where the smaller new area
+/// leaves the needles or at least doubles, and where the longest edge's does not, the other
+/// edges' are tried: the other long edge's (its apex 9.2e-9 off the neighbour's plane) puts
+/// the short edge beside an apex off the line, and the neighbouring needle goes the same way
+/// (the shell's volume unchanged). Fails without that: 2 needles.
+#[test]
+fn sliver_shells_of_a_box_turned_1e_6_degrees_flip_their_caps_off_their_line() {
+    replay(&[
+        0x00, 0x08, 0x5c, 0xd7, 0x00, 0x00, 0xd7, 0x00, 0xdc, 0x00, 0x00, 0xfd, 0x00, 0x00, 0x00,
+        0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xff,
+        0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+        0x00, 0x00, 0x00, 0xd7, 0x00, 0x00, 0xd7, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xd7, 0xd7,
+        0xd7, 0xd7, 0x00, 0xd7, 0x00, 0xd7, 0x00, 0x00, 0x00, 0x00, 0x40, 0x00, 0x28, 0x23, 0x00,
+        0x08, 0x00, 0x08, 0x2f, 0xd7,
+    ]);
+}

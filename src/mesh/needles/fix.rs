@@ -122,7 +122,15 @@ impl Work {
                 *best = Some((swept, op));
             }
         };
-        consider(&mut flips, self.plan_flip(t, longest));
+        consider(&mut flips, self.plan_flip(t, longest, short_edge));
+        // Where a spike's longest edge's flip does not help (the neighbour's apex on the
+        // spike's line: the short edge and the needle would only move there), the other
+        // edges' flips, to the neighbours across them.
+        if short_edge && flips.is_none() {
+            for k in (0..3).filter(|&k| k != longest) {
+                consider(&mut flips, self.plan_flip(t, k, true));
+            }
+        }
         for k in 0..3 {
             let (p, q) = (tri[k], tri[(k + 1) % 3]);
             consider(&mut collapses, self.plan_collapse(t, p, q));
