@@ -78,9 +78,10 @@ fn union_with_a_slab_through_a_cube_less_a_cube_turned_1e_8_degrees_keeps_its_co
 /// neighbour's apex, on the spike's line too, in its place: a needle of the same area (1.2578e-13
 /// → 1.2578e-13, counted as helping, the smaller area a hair larger). The next took a stretch
 /// off the box's face by 2.6e-7, changing the shell's volume by 2e-9, beyond 1 % of it: redone
-/// strict, then left whole with two needles. A flip now helps only where the smaller new area
-/// leaves the needles or at least doubles, and where the longest edge's does not, the other
-/// edges' are tried: the other long edge's (its apex 9.2e-9 off the neighbour's plane) puts
+/// strict, then left whole with two needles. A thin spike's flip now helps first only where
+/// the smaller new area leaves the needles or at least doubles, and where the longest edge's
+/// does not, the other edges' are tried within twice its thickness (the longest edge's as any
+/// needle's only where none applies): the other long edge's (its apex 9.2e-9 off the neighbour's plane) puts
 /// the short edge beside an apex off the line, and the neighbouring needle goes the same way
 /// (the shell's volume unchanged). Fails without that: 2 needles.
 #[test]

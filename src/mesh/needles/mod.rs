@@ -12,10 +12,12 @@
 //! * **Flip** the needle's longest edge `ab` (apex `v`, neighbour `bac`) to `vc`. The new
 //!   triangles lie in the tetrahedron `abcv`, whose every point is within the apex height of
 //!   `abc`: the surface moves by at most that height. Taken when `v` is far from both ends of
-//!   `ab` (a *cap*), or a spike's no collapse takes. A spike's flip helps only where the
-//!   smaller new triangle is no needle or at least twice the smaller old one: flipping its
-//!   long edge keeps its short edge, and with `c` on the spike's line the needle only moves
-//!   there. Where the longest edge's flip does not help, the spike's other edges' are tried.
+//!   `ab` (a *cap*), or a spike's no collapse takes. A thin spike's flip helps first only
+//!   where the smaller new triangle is no needle or at least twice the smaller old one:
+//!   flipping its long edge keeps its short edge, and with `c` on the spike's line the needle
+//!   only moves there. Where the longest edge's flip does not help so, the spike's other
+//!   edges' are tried within twice its thickness; where none applies, the longest edge's as
+//!   any needle's.
 //! * **Collapse** the needle's shortest edge `pq`, moving `p` onto `q` and deleting the two
 //!   triangles beside it; where that would change the volume, `q` moves off its place along
 //!   the fan's normal by what puts it back (a collapse keeps the volume). The surface moves by
