@@ -31,6 +31,8 @@ pub(crate) struct Indexed {
     pub rim: Vec<u32>,
     /// The corners' vertex ids of the core polygons, then of the rim polygons, in order.
     pub ids: Vec<u32>,
+    /// How many of `ids` are the core's (the rim's follow).
+    pub core_corners: usize,
     /// One more than the largest id.
     pub vertex_count: u32,
     /// Ids below this are the first operand's, the rest the second's.
@@ -71,10 +73,7 @@ pub(super) fn repair(
     }
     let wide = Wide::default();
     let (mut positions, map) = weld_within(&corners, delta, &wide);
-    let core_corners: usize = polygons[..index.core]
-        .iter()
-        .map(|p| p.vertices().len())
-        .sum();
+    let core_corners = index.core_corners;
     // The welded vertex of each id the rim uses; the core's own vertices come after them.
     let mut vertex_of = vec![u32::MAX; index.vertex_count as usize];
     // Whether discs by position may stand for the core's own vertices: not where the weld made
