@@ -46,13 +46,27 @@ const UNKNOWN: Plane = Plane {
 /// cross at a tiny angle, a point on their crossing line is only known to a rounding error over
 /// the angle, and each operand computes its own; computed from its three planes the same way by
 /// every polygon that holds it (`meet`), it is one point (see [`Polygon::split`]).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct Polygon {
     vertices: Vertices,
     plane: Plane,
     source: u32,
     /// None, or edge `i` (vertex `i` to `i + 1`) lies in `edges[i]` ([`UNKNOWN`] if not known).
     edges: EdgePlanes,
+}
+
+/// Cloned field by field, the vertices copied as one block: the derived clone went through the
+/// vertex storage's element-by-element `extend` (`SmallVec`'s `Clone`), the larger part of
+/// what a boolean's kept far polygons cost to hand on.
+impl Clone for Polygon {
+    fn clone(&self) -> Self {
+        Polygon {
+            vertices: Vertices::from_slice(&self.vertices),
+            plane: self.plane,
+            source: self.source,
+            edges: self.edges.clone(),
+        }
+    }
 }
 
 /// Where a polygon lies relative to a plane, and its two pieces where it spans the plane

@@ -139,13 +139,17 @@ fn apart_across_edges(poly: &Polygon, other: &Polygon, apart: f64) -> bool {
                 (lo.min(d), hi.max(d))
             })
     };
-    for i in 0..p.len() {
-        let e = p[(i + 1) % p.len()] - p[i];
-        for k in 0..q.len() {
-            let f = q[(k + 1) % q.len()] - q[k];
+    // Each triangle's edges and their lengths, once: the pairs' loop asks each three times.
+    let edges = |vs: &[DVec3]| {
+        let e = [vs[1] - vs[0], vs[2] - vs[1], vs[0] - vs[2]];
+        (e, e.map(DVec3::length))
+    };
+    let ((pe, pl), (qe, ql)) = (edges(p), edges(q));
+    for (&e, &e_len) in pe.iter().zip(&pl) {
+        for (&f, &f_len) in qe.iter().zip(&ql) {
             let axis = e.cross(f);
             let len = axis.length();
-            if len.is_nan() || len <= 1e-9 * e.length() * f.length() {
+            if len.is_nan() || len <= 1e-9 * e_len * f_len {
                 continue;
             }
             let u = axis / len;
