@@ -243,13 +243,14 @@ fn boolean_at_least(
     let (a_kept, b_kept) = rayon::join(
         || {
             let tree_b = focused_tree(&b, &near_b, &a, &near_a, eps, meter);
-            let far = keep_far(&a, &a_ids, &near_a, &surface_b, a_keep, a_flat);
+            let far = keep_far(&a, &a_ids, &near_a, &surface_b, a_keep, a_flat, false);
             let near = tree_b.clip(pick(&a, &near_a), a_keep, a_rule, &surface_b, meter);
             (far, near.into_iter().map(|c| c.polygon).collect())
         },
         || {
             let tree_a = focused_tree(&a, &near_a, &b, &near_b, eps, meter);
-            let far = keep_far(&b, &b_ids, &near_b, &surface_a, b_keep, b_flat);
+            let turned = op == BoolOp::Difference;
+            let far = keep_far(&b, &b_ids, &near_b, &surface_a, b_keep, b_flat, turned);
             let first = tree_a.clip(
                 pick(&b, &near_b),
                 b_keep,

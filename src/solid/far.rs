@@ -1,6 +1,7 @@
 //! The polygons a boolean keeps whole, away from the other operand, numbered by vertex so that
 //! `to_mesh` repairs only around the cut (see [`Indexed`]).
 
+use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use crate::bsp::{Label, Surface};
@@ -19,6 +20,10 @@ pub(super) struct Far {
     ids: Vec<u32>,
     core: usize,
     rim: usize,
+    /// How many of `ids` are the core's corners (the rim's follow).
+    core_corners: usize,
+    /// Whether each polygon's ids are reversed (see [`keep_far`]).
+    turned: bool,
     vertex_count: u32,
     /// Whether the operand's polygons are discs by position (see [`VertexIds::discs`]).
     discs: bool,
@@ -39,6 +44,9 @@ pub(super) struct Far {
 /// coplanar region: around each, the polygons that `to_mesh` could merge as coplanar (one
 /// source, each's corners within `flat` of the other's plane) fall into at least three such
 /// classes (see [`merge_classes`]), or no two of them could merge at all.
+///
+/// With `turned` (B of a difference, whose polygons the boolean flips), each polygon's ids are
+/// laid out reversed, as its corners will be.
 pub(super) fn keep_far(
     polys: &[Polygon],
     ids: &VertexIds,
@@ -46,6 +54,7 @@ pub(super) fn keep_far(
     other: &Surface,
     keep: Label,
     flat: Option<f64>,
+    turned: bool,
 ) -> Far {
     debug_assert!(ids.fits(polys));
     let mut groups = DisjointSets::new(polys.len());
@@ -125,18 +134,31 @@ pub(super) fn keep_far(
     let (n_core, n_rim) = (core.len(), rim.len());
     core.append(&mut rim);
     let mut out_ids = Vec::with_capacity(core.iter().map(|&i| ids.corners(i as usize).len()).sum());
-    for &i in &core {
-        out_ids.extend(
-            ids.corners(i as usize)
-                .iter()
-                .map(|&id| renumber[id as usize]),
-        );
+    let mut core_corners = 0;
+    for (k, &i) in core.iter().enumerate() {
+        if k == n_core {
+            core_corners = out_ids.len();
+        }
+        let ring = ids
+            .corners(i as usize)
+            .iter()
+            .map(|&id| renumber[id as usize]);
+        if turned {
+            out_ids.extend(ring.rev());
+        } else {
+            out_ids.extend(ring);
+        }
+    }
+    if n_rim == 0 {
+        core_corners = out_ids.len();
     }
     Far {
         polygons: core.iter().map(|&i| polys[i as usize].clone()).collect(),
         ids: out_ids,
         core: n_core,
         rim: n_rim,
+        core_corners,
+        turned,
         vertex_count: far_count,
         discs: ids.discs(),
         fans: ids.fans(),
@@ -212,6 +234,11 @@ fn mergeable(p: &Polygon, q: &Polygon, flat: f64) -> bool {
 /// an operand not indexed, and the clipped ones), then B's likewise (the order the polygons had
 /// before the cores were taken out), B's polygons flipped with `flip_b`; with the index of the
 /// cores and rims, if any.
+///
+/// The polygons are moved (and B's flipped) into the output in parallel: rayon's `par_extend`
+/// of an indexed iterator writes each polygon to its own slot, so the order is the one above
+/// on any number of threads. The ids, a few words per polygon, are laid out on the calling
+/// thread.
 pub(super) fn assemble(
     (mut a, a_rest): (Far, Vec<Polygon>),
     (mut b, b_rest): (Far, Vec<Polygon>),
@@ -221,48 +248,45 @@ pub(super) fn assemble(
     let core = a.core + b.core;
     let vertex_count = a.vertex_count + b.vertex_count;
     let offset = a.vertex_count;
-    let [a_core, a_rim, a_plain] = a.parts();
-    let [b_core, b_rim, b_plain] = b.parts();
-    let (a_split, b_split) = (corner_count(&a_core), corner_count(&b_core));
-    let mut polygons = Vec::with_capacity(total);
+    let (a_core, a_rim, b_core, b_rim) = (a.core, a.rim, b.core, b.rim);
+    // The ids: A's core, B's core (past A's), A's rim, B's rim. B's came reversed from
+    // `keep_far` where B is flipped.
+    debug_assert!(!a.turned && (b.ids.is_empty() || b.turned == flip_b));
+    let (a_split, b_split) = (a.core_corners, b.core_corners);
     let mut ids = Vec::with_capacity(a.ids.len() + b.ids.len());
-    let mut rim = Vec::with_capacity(a_rim.len() + b_rim.len());
-    // B's polygons with their ids past A's, both reversed when B is flipped.
-    let push_b = |polygons: &mut Vec<Polygon>, ids: &mut Vec<u32>, part: Vec<Polygon>, at| {
-        let mut at = at;
-        for mut p in part {
-            let n = p.vertices().len();
-            let ring = b.ids[at..at + n].iter().map(|&i| i + offset);
-            at += n;
-            if flip_b {
-                p.flip();
-                ids.extend(ring.rev());
-            } else {
-                ids.extend(ring);
-            }
-            polygons.push(p);
-        }
-    };
-    polygons.extend(a_core);
     ids.extend_from_slice(&a.ids[..a_split]);
-    push_b(&mut polygons, &mut ids, b_core, 0);
-    rim.extend(polygons.len() as u32..(polygons.len() + a_rim.len()) as u32);
-    polygons.extend(a_rim);
+    ids.extend(b.ids[..b_split].iter().map(|&i| i + offset));
     ids.extend_from_slice(&a.ids[a_split..]);
-    polygons.extend(a_plain);
-    polygons.extend(a_rest);
-    rim.extend(polygons.len() as u32..(polygons.len() + b_rim.len()) as u32);
-    push_b(&mut polygons, &mut ids, b_rim, b_split);
-    for mut p in b_plain.into_iter().chain(b_rest) {
+    ids.extend(b.ids[b_split..].iter().map(|&i| i + offset));
+    // Where the rims land: after both cores, and after all of A.
+    let a_at = a_core + b_core;
+    let b_at = a.polygons.len() + a_rest.len() + b_core;
+    let mut rim = Vec::with_capacity(a_rim + b_rim);
+    rim.extend(a_at as u32..(a_at + a_rim) as u32);
+    rim.extend(b_at as u32..(b_at + b_rim) as u32);
+    // A's and B's polygons past their cores, taken off the end (no tail to move).
+    let a_after: Vec<Polygon> = a.polygons.par_drain(a_core..).collect();
+    let b_after: Vec<Polygon> = b.polygons.par_drain(b_core..).collect();
+    let turn = |mut p: Polygon| {
         if flip_b {
             p.flip();
         }
-        polygons.push(p);
-    }
+        p
+    };
+    let mut polygons = Vec::with_capacity(total);
+    polygons.par_extend(
+        std::mem::take(&mut a.polygons)
+            .into_par_iter()
+            .chain(std::mem::take(&mut b.polygons).into_par_iter().map(turn))
+            .chain(a_after.into_par_iter())
+            .chain(a_rest.into_par_iter())
+            .chain(b_after.into_par_iter().chain(b_rest).map(turn)),
+    );
     let index = (core > 0).then_some(Indexed {
         core,
         rim,
         ids,
+        core_corners: a_split + b_split,
         vertex_count,
         a_vertices: offset,
         discs: [a.discs, b.discs],
@@ -271,20 +295,6 @@ pub(super) fn assemble(
         least_fan: [a.least_fan, if flip_b { 0.0 } else { b.least_fan }],
     });
     (polygons, index)
-}
-
-impl Far {
-    /// The core, the rim and the rest, taken out.
-    fn parts(&mut self) -> [Vec<Polygon>; 3] {
-        let mut core = std::mem::take(&mut self.polygons);
-        let plain = core.split_off(self.core + self.rim);
-        let rim = core.split_off(self.core);
-        [core, rim, plain]
-    }
-}
-
-fn corner_count(polygons: &[Polygon]) -> usize {
-    polygons.iter().map(|p| p.vertices().len()).sum()
 }
 
 #[cfg(test)]

@@ -31,6 +31,8 @@ pub(crate) struct Indexed {
     pub rim: Vec<u32>,
     /// The corners' vertex ids of the core polygons, then of the rim polygons, in order.
     pub ids: Vec<u32>,
+    /// How many of `ids` are the core's (the rim's follow).
+    pub core_corners: usize,
     /// One more than the largest id.
     pub vertex_count: u32,
     /// Ids below this are the first operand's, the rest the second's.
@@ -71,10 +73,7 @@ pub(super) fn repair(
     }
     let wide = Wide::default();
     let (mut positions, map) = weld_within(&corners, delta, &wide);
-    let core_corners: usize = polygons[..index.core]
-        .iter()
-        .map(|p| p.vertices().len())
-        .sum();
+    let core_corners = index.core_corners;
     // The welded vertex of each id the rim uses; the core's own vertices come after them.
     let mut vertex_of = vec![u32::MAX; index.vertex_count as usize];
     // Whether discs by position may stand for the core's own vertices: not where the weld made
@@ -114,27 +113,28 @@ pub(super) fn repair(
         }
     }
     let mut rings = rings_of(rest, &map, &positions, delta, index.core);
-    // The core's edges between two welded vertices: the rim's edges across them are matched.
-    let mut seam: Vec<(u32, u32)> = Vec::new();
-    let mut at = 0usize;
-    for p in &polygons[..index.core] {
-        let ids = &index.ids[at..at + p.vertices().len()];
-        at += ids.len();
-        for k in 0..ids.len() {
-            let a = vertex_of[ids[k] as usize];
-            let b = vertex_of[ids[(k + 1) % ids.len()] as usize];
-            if (a as usize) < pinned.len() && (b as usize) < pinned.len() {
-                seam.push((a, b));
-            }
-        }
-    }
     // The rim's and the cut polygons' repair, and beside it the core's fans (which read only
     // the welded positions and write the core's own vertices): the two ran one after the other
     // on one thread, the fans about a twentieth of this pass (5 M instructions of 90 M on
-    // rocker-arm). Joined in that order, whatever the threads.
+    // rocker-arm). Joined in that order, whatever the threads. The seam is found on the first
+    // side, beside the fans, rather than before the join on the calling thread.
     let welded = positions.len();
     let ((mut triangles, mut sources), core) = rayon::join(
         || {
+            // The core's edges between two welded vertices: the rim's edges across them are matched.
+            let mut seam: Vec<(u32, u32)> = Vec::new();
+            let mut at = 0usize;
+            for p in &polygons[..index.core] {
+                let ids = &index.ids[at..at + p.vertices().len()];
+                at += ids.len();
+                for k in 0..ids.len() {
+                    let a = vertex_of[ids[k] as usize];
+                    let b = vertex_of[ids[(k + 1) % ids.len()] as usize];
+                    if (a as usize) < pinned.len() && (b as usize) < pinned.len() {
+                        seam.push((a, b));
+                    }
+                }
+            }
             let known =
                 tjunction::insert_on_edges(&positions, &[], &mut rings, delta, &wide, true, &seam);
             regions::triangulate_regions(&positions, &rings, polygons, delta, &pinned, known)
