@@ -237,7 +237,7 @@ impl Tree {
                 // A face of the surface crossing that one at a small angle may lie between the
                 // fragment and that point, nearer than the tolerance: see
                 // [`Surface::crossings_off`].
-                return match surface.crossings_off(c, off, w.side) {
+                return match surface.crossings_off(c, off, w.side, w.polygon.plane()) {
                     Some(n) if n % 2 == 1 => label.flipped(),
                     _ => label,
                 };

@@ -19,6 +19,7 @@ pub(crate) use faces::share_face_planes;
 #[cfg(test)]
 pub(crate) use faces::share_face_planes_by_position;
 pub(crate) use planes::attach_edge_planes_among;
+pub(crate) use planes::side_across_line;
 pub(crate) use shared::share_near_parallel_vertices;
 pub(crate) use side::plane_noise;
 

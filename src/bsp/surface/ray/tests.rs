@@ -199,14 +199,45 @@ fn a_face_nearly_parallel_between_a_fragment_and_its_offset_point_is_counted() {
     let eps = 1e-12;
     let solid = |tilt: f64| unit_cube(|p| DVec3::new(p.x + tilt * p.x * p.y, p.y, p.z));
     let c = DVec3::new(1.0, 0.5, 0.5);
+    let own = crate::geom::Plane::through(c, DVec3::X);
     let off = c + DVec3::X * (2.0 * eps);
     let turned = solid(2e-12);
     let s = Surface::new(turned.polygons(), eps);
     assert_eq!(s.label(off), Label::Outside);
-    assert_eq!(s.crossings_off(c, off, DVec3::X), Some(1));
+    assert_eq!(s.crossings_off(c, off, DVec3::X, &own), Some(1));
     let flush = solid(0.0);
     let s = Surface::new(flush.polygons(), eps);
-    assert_eq!(s.crossings_off(c, off, DVec3::X), Some(0));
+    assert_eq!(s.crossings_off(c, off, DVec3::X, &own), Some(0));
+}
+
+/// The same near the line where the turned face (x = 1 + 2e-12·(y − 0.5)) crosses the plane
+/// x = 1: 0.002 from it the fragment's point lies 4e-15 off the face, within the rounding of
+/// its plane, and is judged by its distance across the line, as the tree's split judges it:
+/// inside the face on one side of the line (the segment crosses the face once), beyond it on
+/// the other (no crossing). Taken as on the face, the first was labelled outside (round 20's
+/// fork input e3c98fcd).
+#[test]
+fn a_nearly_parallel_face_through_a_fragments_point_is_judged_across_the_line() {
+    let eps = 1e-12;
+    let turned = unit_cube(|p| DVec3::new(p.x + 2e-12 * p.x * (p.y - 0.5), p.y, p.z));
+    let s = Surface::new(turned.polygons(), eps);
+    for (y, crossings) in [(0.502, 1), (0.498, 0)] {
+        let c = DVec3::new(1.0, y, 0.25);
+        let own = crate::geom::Plane::through(c, DVec3::X);
+        let off = c + DVec3::X * (2.0 * eps);
+        let face = turned
+            .polygons()
+            .iter()
+            .find(|p| p.plane().normal.x > 0.5)
+            .unwrap();
+        assert!(face.plane().distance(c).abs() <= crate::polygon::plane_noise(face.plane(), c));
+        assert_eq!(s.label(off), Label::Outside);
+        assert_eq!(
+            s.crossings_off(c, off, DVec3::X, &own),
+            Some(crossings),
+            "at y = {y}"
+        );
+    }
 }
 
 /// A face y = −0.4375 whose ring turns back by one ulp at a corner (x = −0.4375 + 1 ulp,
