@@ -89,14 +89,45 @@ fn three_spheres_turned_a_hair_about_different_axes_intersect_closed() {
     assert_closed_sphere(&(&(&a & &b) & &c), "(a ∩ b) ∩ c");
 }
 
-/// (a ∪ b) ∪ c: 292 triangles, 4 shells, not closed, the mesh's volume 1.27926 against the
+/// (a ∪ b) ∪ c was 292 triangles, 4 shells, not closed, the mesh's volume 1.27926 against the
 /// solid's 1.28234 (the sphere's 1.28184149). Summed per facet of c as for the intersection
-/// above, three facets are off (15: +3.0e-6, 16: +2.2e-3, 113: +9.4e-8); on facet 16 c's
-/// pieces over 2.2e-3 of the facet lie where a's plane is outermost, beside a's piece there
-/// (the region doubled), bounded by none of the three planes' crossing lines: a decision of the
-/// union's tree about fragments of c, not the placing of the lines. Not traced further.
+/// above, three facets were off (15: +3.0e-6, 16: +2.2e-3, 113: +9.4e-8): pieces of c kept
+/// inside a, beside a's own piece. On facet 16, a ∪ b had kept, within the tolerance, a strip
+/// of b's facet along its edge to facet 17, reaching 4e-13 in front of a's facet 17 and
+/// 8.9e-13 behind it, under a's facet 16 (the two facet-16 planes crossing at 8.8e-12 rad).
+/// Clipping c against a ∪ b, the strip, coplanar with a's facet 17 by the tolerance and sent
+/// behind it by its reach, made a node of b's plane behind a's facets 16 and 17 whose front
+/// leaf read the whole layer between b's plane and a's outside, c's facet lying in it. It now
+/// goes where b's facet 17, nearly parallel to a's, went (`Wedge::side_of` in
+/// `bsp/build/face.rs`); facets 15 and 16 sum right, and the volumes are the sphere's to
+/// 2e-8 (facet 113 below).
 #[test]
-#[ignore = "open: near-coplanar — three copies of a sphere, two turned 1e-9° about different axes, unite to a mesh of 4 shells, not closed, 2e-3 of its volume lost (the intersection closes)"]
+fn three_spheres_turned_a_hair_about_different_axes_unite_to_the_spheres_volume() {
+    let [a, b, c] = spheres();
+    let union = &(&a | &b) | &c;
+    let expected = sphere(DVec3::Z, 0.0).volume();
+    for (what, v) in [
+        ("solid", union.volume()),
+        ("mesh", union.to_mesh().volume()),
+    ] {
+        let off = (v - expected).abs() / expected;
+        assert!(off < 1e-7, "{what}: volume {v} against {expected}");
+    }
+}
+
+/// (a ∪ b) ∪ c: 267 triangles, 2 shells, not closed, the solid's and the mesh's volumes
+/// 1.2818415137 (2.1e-8 above the sphere's). What is left is facet 113: a piece of c of
+/// 9.4e-8 at a's corner with facets 114 and 128 (all three a's planes meet there), kept inside
+/// a. a ∪ b had kept a triangle of b's facet 113 there of area 2.5e-24, its corners within a
+/// few tolerances of each other, reaching 3.5e-13 behind a's facet 128 (within the tolerance,
+/// that side only): sent behind it as a sliver, it made a node of b's plane behind a's facets 113,
+/// 114 and 128 whose front leaf reads the layer between b's plane and a's (1e-12 apart) outside,
+/// and c's piece lies in that layer. Keeping such a point-like polygon at the node alone
+/// (corners within 4 tolerances of one) closes this union, but round 20's fork input c095e8fc
+/// then loses 1.6e-4 of its solid's volume (its point-like sliver within one tolerance is
+/// needed on its side), so that is not the rule.
+#[test]
+#[ignore = "open: near-coplanar — three copies of a sphere, two turned 1e-9° about different axes, unite to 2 shells, not closed, the volume 2.1e-8 high (a point-like piece of b at a's corner, facet 113; the intersection closes)"]
 fn three_spheres_turned_a_hair_about_different_axes_unite_closed() {
     let [a, b, c] = spheres();
     assert_closed_sphere(&(&(&a | &b) | &c), "(a ∪ b) ∪ c");

@@ -50,6 +50,8 @@ impl Tree {
         // The vertices within `eps` of the plane of nearly parallel polygons sent to one side
         // (see `Wedge`).
         let mut wedge = Wedge::default();
+        // Slivers reaching both sides of the plane, settled once every polygon is noted.
+        let mut two_sided: smallvec::SmallVec<[u32; 4]> = smallvec::SmallVec::new();
         for (k, &id) in ids.iter().enumerate() {
             let class = scratch.best.get(k).copied().unwrap_or(Class::Unsettled);
             let poly = arena.poly(id);
@@ -77,12 +79,18 @@ impl Tree {
                     own = own.union(&arena.boxes[id as usize]);
                     self.polygons.push(arena.poly(id).clone());
                     // A sliver across the plane (within `eps` of it, its own plane crossing it
-                    // steeply) also bounds the side it lies on; see `sliver_side`.
+                    // steeply) also bounds the side it lies on; see `sliver_side`. One reaching
+                    // both sides waits for its neighbours (`Wedge::side_of`).
                     if poly.crosses(&plane) {
-                        match sliver_side(poly.vertices(), &plane) {
-                            Some(Side::Front) => front.near.push(id),
-                            Some(_) => back.near.push(id),
-                            None => {}
+                        let (lo, hi) = sliver_reach(poly.vertices(), &plane);
+                        if lo < 0.0 && hi > 0.0 {
+                            two_sided.push(id);
+                        } else {
+                            match sliver_side(poly.vertices(), &plane) {
+                                Some(Side::Front) => front.near.push(id),
+                                Some(_) => back.near.push(id),
+                                None => {}
+                            }
                         }
                     }
                 }
@@ -110,6 +118,17 @@ impl Tree {
         }
         scratch.recycle(ids);
         scratch.recycle(far);
+        for id in two_sided {
+            let vs = arena.poly(id).vertices();
+            let side = wedge
+                .side_of(vs, &plane, eps)
+                .or_else(|| sliver_side(vs, &plane));
+            match side {
+                Some(Side::Front) => front.near.push(id),
+                Some(_) => back.near.push(id),
+                None => {}
+            }
+        }
         // Steep polygons ending at such a vertex on the other side also bound that side.
         if !wedge.ahead.is_empty() {
             let follow = wedge.followers(&back.near, arena, &plane, eps, Side::Front);
@@ -168,6 +187,38 @@ impl Wedge {
                 },
                 _ => {}
             }
+        }
+    }
+
+    /// The side of `plane` a sliver reaching both sides of it beyond its rounding lies on, by its
+    /// neighbours: the side where a nearly parallel polygon noted there has a vertex at one of
+    /// the sliver's corners on that side (to the plane's rounding: the two polygons' cut points
+    /// on the edge they share differ in the last bits); `None` where neither side or both do.
+    ///
+    /// The sliver is then the end of a thin wedge whose long face, nearly parallel to `plane`,
+    /// the band sent to that side; its reach to the other side is the tolerance's. A union of
+    /// three 15 × 9 spheres, two turned 1e-9° about different axes ((a ∪ b) ∪ c): a ∪ b kept a
+    /// strip of b's facet 16 along its edge to facet 17, reaching 4e-13 in front of a's facet 17
+    /// (where b stands out of a: the strip's own part, beside b's facet 17 in front) and, cut
+    /// within the tolerance, 8.9e-13 behind it, under a's facet 16. Clipping c against a ∪ b,
+    /// the strip, sent behind a's facet 17 by its reach, made a node of b's plane behind a's
+    /// facets 16 and 17 whose front leaf read the layer between b's plane and a's (8.9e-13
+    /// apart, crossing at 8.8e-12 rad) outside across the facet, and c's facet, lying in that
+    /// layer inside a, was kept: 2.2e-3 of area doubled, 4 shells. Sent where b's facet 17
+    /// went, its plane bounds the strip alone.
+    fn side_of(&self, vertices: &[DVec3], plane: &Plane, eps: f64) -> Option<Side> {
+        let at = |noted: &[DVec3], side: Side| {
+            vertices.iter().any(|&v| {
+                off_within(plane, v, eps) == Some(side)
+                    && noted
+                        .iter()
+                        .any(|&w| (v - w).abs().max_element() <= plane_noise(plane, v))
+            })
+        };
+        match (at(&self.ahead, Side::Front), at(&self.behind, Side::Back)) {
+            (true, false) => Some(Side::Front),
+            (false, true) => Some(Side::Back),
+            _ => None,
         }
     }
 
@@ -234,8 +285,24 @@ fn off_within(plane: &Plane, v: DVec3, eps: f64) -> Option<Side> {
 /// that node, stays. Passed to the back, its plane alone bounded the region behind and read
 /// outside below z = −0.5625, across the box's inside: the intersection of that union with the
 /// cube dropped a strip of the cube's face lying in that plane (a flat shell).
+///
+/// A sliver reaching both sides beyond the rounding goes where its nearly parallel neighbour
+/// went, when one shares its corner (see `Wedge::side_of`); its reach decides only otherwise.
 fn sliver_side(vertices: &[DVec3], plane: &Plane) -> Option<Side> {
-    let (lo, hi) = vertices.iter().fold((0.0f64, 0.0f64), |(lo, hi), &v| {
+    let (lo, hi) = sliver_reach(vertices, plane);
+    if hi > -lo {
+        Some(Side::Front)
+    } else if -lo > hi {
+        Some(Side::Back)
+    } else {
+        None
+    }
+}
+
+/// How far a polygon's vertices reach behind (`lo`, at most 0) and in front of (`hi`, at least
+/// 0) `plane`, a vertex within the plane's rounding ([`plane_noise`]) reaching neither side.
+fn sliver_reach(vertices: &[DVec3], plane: &Plane) -> (f64, f64) {
+    vertices.iter().fold((0.0f64, 0.0f64), |(lo, hi), &v| {
         let d = plane.distance(v);
         // Within the plane's rounding a vertex is on it: it reaches neither side.
         let d = if d.abs() <= plane_noise(plane, v) {
@@ -244,14 +311,7 @@ fn sliver_side(vertices: &[DVec3], plane: &Plane) -> Option<Side> {
             d
         };
         (lo.min(d), hi.max(d))
-    });
-    if hi > -lo {
-        Some(Side::Front)
-    } else if -lo > hi {
-        Some(Side::Back)
-    } else {
-        None
-    }
+    })
 }
 
 /// A polygon against a candidate splitter's plane, from [`Polygon::side_near`]: what
