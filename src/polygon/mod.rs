@@ -19,9 +19,8 @@ pub(crate) use faces::share_face_planes;
 #[cfg(test)]
 pub(crate) use faces::share_face_planes_by_position;
 pub(crate) use planes::attach_edge_planes_among;
-pub(crate) use planes::side_across_line;
 pub(crate) use shared::share_near_parallel_vertices;
-pub(crate) use side::plane_noise;
+pub(crate) use side::{plane_noise, side_across_line};
 
 /// Vertex storage: quads and their split fragments stay inline.
 pub(crate) type Vertices = SmallVec<[DVec3; 6]>;

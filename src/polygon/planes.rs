@@ -9,7 +9,7 @@ use crate::geom::Plane;
 use crate::hash::{KeyedHashMap, key};
 
 use super::dd::{self, Dd};
-use super::side::{NEAR_PARALLEL, PARALLEL_BELOW};
+use super::side::NEAR_PARALLEL;
 use super::{Polygon, UNKNOWN};
 
 /// The point where three planes meet, the same bits whichever order they come in and whichever
@@ -163,21 +163,6 @@ impl Crossing {
         let s = self.apart.dot(v - self.on_line);
         if self.flip { -s } else { s }
     }
-}
-
-/// Which side of `cut` the point `v` of `own` lies on, judged as [`Polygon::split`] judges a
-/// vertex near a nearly parallel plane (crossing it at a sine in the band from
-/// [`PARALLEL_BELOW`] to [`NEAR_PARALLEL`]): by its distance across their crossing line
-/// ([`Crossing::side`]); `None` for planes not in that band, or a point on the line within
-/// its rounding.
-pub(crate) fn side_across_line(own: &Plane, cut: &Plane, v: DVec3) -> Option<f64> {
-    let sine = own.normal.cross(cut.normal).length();
-    if !(PARALLEL_BELOW..NEAR_PARALLEL).contains(&sine) {
-        return None;
-    }
-    let crossing = Crossing::new(own, cut)?;
-    let s = crossing.side(v);
-    (s.abs() > crossing.rounding()).then_some(s)
 }
 
 /// Units in the last place of the two planes' anchors' separation that the rounding of their

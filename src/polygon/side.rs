@@ -71,6 +71,21 @@ impl Polygon {
     }
 }
 
+/// Which side of `cut` the point `v` of `own` lies on, judged as [`Polygon::split`] judges a
+/// vertex near a nearly parallel plane (crossing it at a sine in the band from
+/// [`PARALLEL_BELOW`] to [`NEAR_PARALLEL`]): by its distance across their crossing line
+/// ([`Crossing::side`]); `None` for planes not in that band, or a point on the line within
+/// its rounding.
+pub(crate) fn side_across_line(own: &Plane, cut: &Plane, v: DVec3) -> Option<f64> {
+    let sine = own.normal.cross(cut.normal).length();
+    if !(PARALLEL_BELOW..NEAR_PARALLEL).contains(&sine) {
+        return None;
+    }
+    let crossing = Crossing::new(own, cut)?;
+    let s = crossing.side(v);
+    (s.abs() > crossing.rounding()).then_some(s)
+}
+
 /// How far from `plane` rounding alone puts a point computed to lie on it: a few units in the
 /// last place of its distance from the plane's anchor and of its own coordinates. Below this,
 /// a vertex is on the plane whatever the angle (a neighbour's shared vertices, nearly flat

@@ -29,7 +29,7 @@ impl Work {
         // needles or to at least twice what it was. Flipping a spike's long edge keeps its
         // short edge, in the new triangle whose third corner is the neighbour's apex: where
         // that apex lies on the spike's line too, the needle only moves there, of the same area
-        // (round 18's b447eea7: 1.9709e-13 → 1.9710e-13, until a stretch took it).
+        // (round 18's b447eea7, the full input: 1.9709e-13 → 1.9710e-13, until a stretch took it).
         let before = area(self.corners(tri)).min(area(self.corners(other)));
         let after = area(self.corners(new_t)).min(area(self.corners(new_u)));
         if after <= before || (spike && after < self.threshold(tri) && after < 2.0 * before) {

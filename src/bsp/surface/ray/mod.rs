@@ -153,7 +153,8 @@ impl Surface<'_> {
     /// How many polygons the short segment from `c`, a point of a fragment lying in a face of
     /// the tree whose normal is `normal`, to `p`, the point off that face a ray labels it from,
     /// crosses clear of their edges where `c` lies off their plane beyond its rounding
-    /// ([`plane_noise`]): the faces not parallel to that face (crossing it at a sine of at
+    /// ([`plane_noise`]), or, on it within that rounding, beyond it across their crossing
+    /// line (below): the faces not parallel to that face (crossing it at a sine of at
     /// least [`Polygon::parallel_to`]'s bound) that lie between the two points, nearer than
     /// the tolerance. `None` when it grazes one.
     ///
