@@ -20,8 +20,9 @@
 //!   any needle's.
 //! * **Collapse** the needle's shortest edge `pq`, moving `p` onto `q` and deleting the two
 //!   triangles beside it; where that would change the volume, `q` moves off its place along
-//!   the fan's normal by what puts it back (a collapse keeps the volume). The surface moves by
-//!   about `|pq|`. Taken when the needle has a short edge (a *spike* or a speck). At the tip of
+//!   the fan's normal by what puts it back (a collapse keeps the volume), unless that would
+//!   move it beyond the bound (at a wedge's thin end, where the fan's normals nearly cancel):
+//!   then it collapses without it. The surface moves by about `|pq|`. Taken when the needle has a short edge (a *spike* or a speck). At the tip of
 //!   a slit narrower than a needle, where `p` and `q` share one more neighbour `w` through a
 //!   vertex `o` of valence three on the edge (`o`'s other two triangles, one on each face of
 //!   the slit, would become one triangle both ways round), it deletes that pair and `o` too

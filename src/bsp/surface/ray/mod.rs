@@ -6,9 +6,7 @@ use glam::DVec3;
 
 use super::Surface;
 use crate::bsp::Label;
-use crate::geom::Aabb;
-use crate::geom::Plane;
-use crate::geom::solid_angle;
+use crate::geom::{Aabb, Plane, solid_angle};
 use crate::polygon::{Polygon, plane_noise, side_across_line};
 
 /// Ray directions for parity counting, away from any axis or diagonal so that rays rarely
