@@ -134,23 +134,23 @@ pub(super) fn keep_far(
     let (n_core, n_rim) = (core.len(), rim.len());
     core.append(&mut rim);
     let mut out_ids = Vec::with_capacity(core.iter().map(|&i| ids.corners(i as usize).len()).sum());
-    let mut core_corners = 0;
-    for (k, &i) in core.iter().enumerate() {
-        if k == n_core {
-            core_corners = out_ids.len();
-        }
+    let push_ring = |out: &mut Vec<u32>, i: u32| {
         let ring = ids
             .corners(i as usize)
             .iter()
             .map(|&id| renumber[id as usize]);
         if turned {
-            out_ids.extend(ring.rev());
+            out.extend(ring.rev());
         } else {
-            out_ids.extend(ring);
+            out.extend(ring);
         }
+    };
+    for &i in &core[..n_core] {
+        push_ring(&mut out_ids, i);
     }
-    if n_rim == 0 {
-        core_corners = out_ids.len();
+    let core_corners = out_ids.len();
+    for &i in &core[n_core..] {
+        push_ring(&mut out_ids, i);
     }
     Far {
         polygons: core.iter().map(|&i| polys[i as usize].clone()).collect(),

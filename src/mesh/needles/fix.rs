@@ -134,8 +134,8 @@ impl Work {
         // edges' flips, to the neighbours across them, within twice its own thickness (or the
         // tolerance). Tried on every spike, out to the bound, they edited `bsp_18`'s profile by
         // 6.2·10⁻³ of its volume, under the pass's 1 % guard.
-        let own = (2.0 * height).max(self.tolerance[self.shell[tri[0] as usize] as usize]);
         if thin_spike && flips.is_none() {
+            let own = (2.0 * height).max(self.tolerance[self.shell[tri[0] as usize] as usize]);
             for k in (0..3).filter(|&k| k != longest) {
                 let plan = self.plan_flip(t, k, true).filter(|plan| plan.dev <= own);
                 consider(&mut flips, plan);
