@@ -489,15 +489,24 @@ fn the_round_20_fork_run_inputs_that_pass() {
 ///
 /// ed3471fb (a cylinder ∪ a 15×9 sphere turned 1e-9°, ∩ the sphere turned 1e-9° about two other
 /// axes) closes since 1886ef4e does (see [`FORK_20_PASSING`]; before, step 2 open, 85 boundary
-/// edges), its mesh's volume the sphere's, but the solid's polygons are 9.5e-4 short of it:
-/// not traced (the union of the three spheres, also open, is in `three_turned_spheres.rs`).
+/// edges), its mesh's volume the sphere's, but the solid's polygons are 9.5e-4 short of it: a
+/// hole of 4.3e-3 in one facet of the third sphere. Traced: step 1 keeps there a triangle of
+/// the first sphere's facet (8.5e-8) among the second's pieces, and in its tree the node of
+/// that triangle's plane, behind the second's, reads the layer between the two planes
+/// (crossing at about 1e-11 rad) outside across the whole facet; the third sphere's facet,
+/// lying in that layer, is dropped with the second's pieces outside it. Minimised (ignored) as
+/// `three_turned_spheres::a_cylinder_united_with_a_sphere_then_cut_by_two_turned_copies_keeps_every_facet`.
 /// 0a15665e (an OBJ bar turned 1e-2° ∪ an OBJ box turned 1e-3° ∪ a cuboid ∪ a 0.125 cube at
 /// their centre, less a slab whose faces are the cube's top and bottom) is open at step 3
 /// because of two lone triangles of about 2e-17, one at each of two opposite corners of the
-/// cube's top and bottom (z = −0.4375 and −0.5625). Neither has a neighbour. Each is bounded by
-/// the cube's two faces and by the line where the box turned 1e-3° crosses that plane
-/// (diagonal, at a sine of about 1.4e-5), 6.7e-9 on a side: a piece of a thin wedge whose
-/// other face the clip did not keep, not a repair defect; not traced to that clip decision.
+/// cube's top and bottom (z = −0.4375 and −0.5625): the cuboid is not needed. Traced: the
+/// union keeps a triangle of the box's turned bottom standing 1.2e-13 out below the cube's
+/// (within the tolerance, 3.1e-13, but beyond the band of the nearly parallel planes, so the
+/// difference keeps it outside the slab), while the box's −x face is cut at the cube's bottom
+/// by the tolerance; in the union's tree, the node of the cube's bottom behind the box's
+/// bottom reads the layer between them outside, and the slab's face over the triangle is
+/// dropped there: no cap. Minimised (ignored) as
+/// `near_coplanar_corners::a_slab_through_a_box_turned_a_hair_caps_the_wedge_under_the_cube`.
 /// e11e6f68 (a box turned 1e-5° ∪ a 0.125 cube ∪ a bar beside it turned 1e-10° ∪ a cuboid ∪ a
 /// slab through the cube turned 1e-8°: step 3 the solid 1.7e-5 above its mesh, open by 5.9e-4):
 /// the bar's bottom, 1.4e-12 rad from the cube's and behind it in the tree, reads the wedge

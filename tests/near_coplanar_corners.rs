@@ -277,3 +277,80 @@ fn a_wedge_under_a_face_turned_a_hair_stays_inside_the_face_beside_it() {
         mesh.volume()
     );
 }
+
+/// Round 20's fork input 0a15665e, minimised (its cuboid far above left out): a 0.125 × 0.125
+/// × 0.5 OBJ bar turned 1e-2° ∪ a 0.125 × 0.25 × 0.125 OBJ box turned 1e-3° ∪ a 0.125 cube,
+/// all about (−0.5, −0.5, −0.5), less a 1 × 1 × 0.125 slab whose top and bottom are the cube's.
+/// What is left is the bar's two ends (0.125² × 0.375, 1.5e-8 more by the turns) and the
+/// wedges where the box's top and bottom, turned at a sine of 1.4e-5 to the slab's faces, stand
+/// out of them.
+///
+/// Open (6 boundary edges: a lone triangle of 2.9e-17 at the corner (−0.5625, −0.5625,
+/// −0.5625) and its twin at (−0.4375, −0.4375, −0.4375)); with the bar or the box made by the
+/// crate's cuboid (quads), or without the bar or the cube, it closes. Traced at the bottom
+/// corner (the top is the same turned over), the tolerance 3.1e-13:
+///
+/// - The union keeps a triangle of the box's bottom of 7.3e-17 between the box's −x face, the
+///   bar's −y face and the line where the box's bottom crosses the cube's (6.7e-9 … 1.2e-8 on
+///   a side): there the box stands out below the cube by up to 1.2e-13, within the tolerance.
+///   The box's −x face is cut at the cube's bottom by the tolerance (its part below, 1.2e-13
+///   tall, is not kept), so the union's pieces there are the box's triangle beside a piece of
+///   the cube's bottom lying exactly in z = −0.5625, sharing an edge 1.2e-13 apart (welded).
+/// - The difference keeps that triangle: judged against the slab's bottom by the band of
+///   nearly parallel planes (the plane's rounding, 1.6e-14), its corner 1.2e-13 below is
+///   outside the slab.
+/// - The slab's bottom is clipped by the union's tree. In the cell x < −0.56249997,
+///   y < −0.56249999 the node of the box's bottom has behind it a node of the cube's bottom
+///   (its only polygon that piece of 2.4e-17 beside the box's −x face), whose front leaf, the
+///   layer below z = −0.5625 and above the box's bottom, reads outside: no plane of the box's
+///   −x face bounds it. The slab's piece over the box's triangle (the part below y =
+///   −0.5624999933, a cell plane) is dropped there; above that cell plane it is kept out to
+///   x = −0.5625 instead of the box's −x face. The box's triangle has no cap, and the mesh
+///   keeps a lone triangle there.
+///
+/// The class of [`a_wedge_under_a_face_turned_a_hair_stays_inside_the_face_beside_it`]: the
+/// layer between two nearly parallel planes, behind one and in front of a node of the other
+/// with a small polygon, reads outside where the solid is inside. The union's mesh read back
+/// and cut by the slab is open too (4 boundary edges).
+#[test]
+#[ignore = "open: two lone triangles of 2.9e-17 at the cube's corners (6 boundary edges): the union's tree reads the layer below the cube's bottom and above the box's bottom, turned 1e-3°, as outside, and drops the slab's face over the box's piece standing 1.2e-13 out"]
+fn a_slab_through_a_box_turned_a_hair_caps_the_wedge_under_the_cube() {
+    let at = |solid: Solid| solid.translate(DVec3::splat(-0.5)).unwrap();
+    let turned = |solid: Solid, axis: DVec3, degrees: f64| {
+        at(solid
+            .rotate(DQuat::from_axis_angle(axis, degrees.to_radians()))
+            .unwrap())
+    };
+    let bar = turned(
+        obj_box(DVec3::new(0.125, 0.125, 0.5)),
+        DVec3::new(
+            -0.5766095342544187,
+            -0.5777202805021225,
+            -0.5777202805021225,
+        ),
+        1e-2,
+    );
+    let box_ = turned(
+        obj_box(DVec3::new(0.125, 0.25, 0.125)),
+        DVec3::new(
+            -0.5779434611618907,
+            -0.5779434611618907,
+            -0.5761620530722484,
+        ),
+        1e-3,
+    );
+    let cube = at(Solid::cube(0.125).unwrap());
+    let slab = at(Solid::cuboid(DVec3::new(1.0, 1.0, 0.125)).unwrap());
+    let result = &(&(&bar | &box_) | &cube) - &slab;
+    let mesh = result.to_mesh();
+    let report = mesh.report();
+    assert!(report.is_closed_manifold(), "{report}");
+    let want = 0.125 * 0.125 * 0.375;
+    assert!(
+        (mesh.volume() - result.volume()).abs() < 1e-12,
+        "mesh {} solid {}",
+        mesh.volume(),
+        result.volume()
+    );
+    assert!((result.volume() - want).abs() < 1e-7, "{}", result.volume());
+}

@@ -132,3 +132,50 @@ fn three_spheres_turned_a_hair_about_different_axes_unite_closed() {
     let [a, b, c] = spheres();
     assert_closed_sphere(&(&(&a | &b) | &c), "(a ∪ b) ∪ c");
 }
+
+/// Round 20's fork input ed3471fb, as it runs: a cylinder (radius 0.6875, 1.375 long, 15
+/// segments, about (−0.5, −0.5, −0.3125)) ∪ the sphere turned 1e-9° about −(1, 1, 1), ∩ the
+/// sphere turned 1e-9° about (−0.88, −0.19, −0.43), ∩ the sphere turned 1e-9° about (0.33,
+/// −0.67, −0.67). The mesh closes with the sphere's volume, but the solid's is 1.28089380,
+/// 9.5e-4 short: on one facet (normal (0.756, −0.634, 0.161)) its polygons sum to 0.046742
+/// against the facet's 0.051032, a hole of 4.3e-3 the repair's fill closes. The three spheres
+/// without the cylinder, the same four in another order (the third sphere before the second,
+/// or the last two intersected first), and the first two steps' mesh read back ∩ the third
+/// sphere all come out right.
+///
+/// Traced: (cylinder ∪ a) ∩ b keeps on that facet six pieces of b's and one triangle of a's,
+/// 8.5e-8, at the facet's corner near (0.151, −0.742, −0.141), where a stands inside b and the
+/// cylinder does not reach. Clipping c by that solid's tree, behind the node of b's facet is a
+/// node of a's plane whose only polygon is that triangle; its front leaf, the layer behind b's
+/// plane and in front of a's (the planes crossing at about 1e-11 rad, the layer under 1e-12
+/// thick across the facet), reads outside. c's facet, behind b's plane there (inside) but in
+/// front of a's, is dropped in that layer across the facet, far from the triangle, while b's
+/// pieces in front of c's plane are dropped by c's tree: neither covers it. The class of the
+/// union's facet 113 above and of `near_coplanar_corners.rs`'s wedges: a node of a small
+/// polygon in a plane nearly parallel to its parent's reads the whole layer between them.
+#[test]
+#[ignore = "open: near-coplanar — the solid's polygons 9.5e-4 short of the sphere (a hole of 4.3e-3 on one facet): a node of a's plane holding a triangle of 8.5e-8 reads the layer behind b's plane outside"]
+fn a_cylinder_united_with_a_sphere_then_cut_by_two_turned_copies_keeps_every_facet() {
+    let cylinder = Solid::cylinder(0.6875, 1.375, 15)
+        .unwrap()
+        .translate(DVec3::new(-0.5, -0.5, -0.3125))
+        .unwrap();
+    let a = sphere(DVec3::splat(-0.5773502691896257), 1e-9);
+    let b = sphere(
+        DVec3::new(
+            -0.8808783146297698,
+            -0.19437896817705494,
+            -0.43159032837337735,
+        ),
+        1e-9,
+    );
+    let c = sphere(
+        DVec3::new(0.3266061076740213, -0.6683294286615044, -0.6683294286615044),
+        1e-9,
+    );
+    let result = &(&(&cylinder | &a) & &b) & &c;
+    assert_closed_sphere(&result, "((cylinder ∪ a) ∩ b) ∩ c");
+    let expected = sphere(DVec3::Z, 0.0).volume();
+    let off = (result.volume() - expected).abs() / expected;
+    assert!(off < 1e-9, "the solid's volume {}", result.volume());
+}
