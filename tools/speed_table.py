@@ -129,7 +129,8 @@ def main(argv):
         return 2
     dir_ = argv[0]
     rounds, only, large, boolmesh = 3, None, False, None
-    bench_obj = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "target", "release",
+    # speed_table.sh builds it with the `fast` profile (one codegen unit, fat LTO).
+    bench_obj = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "target", "fast",
                              "examples", "bench_obj")
     i = 1
     while i < len(argv):

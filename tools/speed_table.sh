@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The speed comparison in one command: builds bspcsg's `bench_obj` and `write_bench_inputs`,
-# writes the inputs (with BSPCSG_MODELS set, the real-model cases too), makes the Python venv
-# with manifold3d if there is none, and prints the markdown table of bspcsg (boolean + closed
-# mesh) against manifold3d on the same files, interleaved (see tools/speed_table.py).
+# The speed comparison in one command: builds bspcsg's `bench_obj` (profile `fast`) and
+# `write_bench_inputs`, writes the inputs (with BSPCSG_MODELS set, the real-model cases too),
+# makes the Python venv with manifold3d if there is none, and prints the markdown table of
+# bspcsg (boolean + closed mesh) against manifold3d on the same files, interleaved (see
+# tools/speed_table.py).
 #
 # usage: tools/speed_table.sh [--large] [--rounds R] [--only SUBSTRING] [--no-boolmesh]
 #   --large  adds the 1M-triangle case (two 1024×512 spheres) with peak memory
@@ -34,7 +35,11 @@ if ((boolmesh)); then
         echo "$log" | tail -n 5 >&2
     fi
 fi
-cargo build --release --quiet --example bench_obj --example write_bench_inputs
+# The table times the `fast` profile (Cargo.toml: one codegen unit, fat LTO), the tool's fastest
+# build (`cargo install --path . --profile fast`). The inputs' writer is not timed: `release`,
+# which the test command has usually built already.
+cargo build --profile fast --quiet --example bench_obj
+cargo build --release --quiet --example write_bench_inputs
 target/release/examples/write_bench_inputs "$inputs" "${large[@]}"
 if [[ ! -x .venv/bin/python ]]; then
     python3 -m venv .venv
