@@ -60,14 +60,14 @@ impl Work {
         // a slit tip's pair turning into one triangle both ways round, which spans nothing).
         let gone = cap.unwrap_or([t1; 2]);
         let fan = |v: u32| {
-            self.around[v as usize]
+            self.around(v)
                 .iter()
                 .copied()
                 .filter(move |&u| u != t1 && u != t2 && !gone.contains(&u))
         };
         let moved = |old: [u32; 3]| old.map(|w| if w == from { to } else { w });
         let mut change = 0.0;
-        for &u in &self.around[from as usize] {
+        for &u in self.around(from) {
             change += twice_normal(self.corners(self.tris[u as usize])).dot(target - source) / 6.0;
         }
         let mut gradient = DVec3::ZERO;
@@ -149,11 +149,8 @@ impl Work {
     pub(super) fn slit_tip(&self, from: u32, to: u32, sides: [(u32, u32); 2]) -> Option<[u32; 2]> {
         let (side, o) = sides
             .into_iter()
-            .find(|&(_, o)| self.around[o as usize].len() == 3)?;
-        let mut pair = self.around[o as usize]
-            .iter()
-            .copied()
-            .filter(|&u| u != side);
+            .find(|&(_, o)| self.around(o).len() == 3)?;
+        let mut pair = self.around(o).iter().copied().filter(|&u| u != side);
         let (u, v) = (pair.next()?, pair.next()?);
         let has = |u: u32, w: u32| self.tris[u as usize].contains(&w);
         let (at_from, at_to) = if has(u, from) { (u, v) } else { (v, u) };
@@ -193,7 +190,7 @@ impl Work {
     /// The vertices joined to `v` by an edge, each once.
     fn neighbours(&self, v: u32) -> SmallVec<[u32; 16]> {
         let mut out: SmallVec<[u32; 16]> = SmallVec::new();
-        for &t in &self.around[v as usize] {
+        for &t in self.around(v) {
             for &w in &self.tris[t as usize] {
                 if w != v && !out.contains(&w) {
                     out.push(w);
@@ -215,7 +212,8 @@ impl Work {
     ) -> Vec<u32> {
         self.positions[to as usize] = at;
         let gone = cap.unwrap_or([t1; 2]);
-        let fan: SmallVec<[u32; 8]> = self.around[from as usize]
+        let fan: SmallVec<[u32; 8]> = self
+            .around(from)
             .iter()
             .copied()
             .filter(|&u| u != t1 && u != t2 && !gone.contains(&u))
@@ -236,7 +234,7 @@ impl Work {
             }
             self.link(u);
         }
-        let mut changed: Vec<u32> = self.around[to as usize].to_vec();
+        let mut changed: Vec<u32> = self.around(to).to_vec();
         changed.extend(fan);
         changed
     }

@@ -54,7 +54,7 @@ impl Work {
         match op {
             Op::Move { v, at } => {
                 self.positions[v as usize] = at;
-                self.around[v as usize].to_vec()
+                self.around(v).to_vec()
             }
             Op::Flip { t, u, new_t, new_u } => self.apply_flip(t, u, new_t, new_u),
             Op::Collapse {

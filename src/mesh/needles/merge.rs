@@ -65,7 +65,7 @@ impl Work {
         while next < cluster.len() {
             let v = cluster[next];
             next += 1;
-            for &u in &self.around[v as usize] {
+            for &u in self.around(v) {
                 for w in self.tris[u as usize] {
                     if !cluster.contains(&w) && short(v, w) {
                         if cluster.len() == CLUSTER_VERTICES {
@@ -322,9 +322,9 @@ impl Work {
             }
             self.link(u);
         }
-        let mut changed = self.around[vertices[0] as usize].to_vec();
+        let mut changed = self.around(vertices[0]).to_vec();
         if cut {
-            changed.extend_from_slice(&self.around[vertices[1] as usize]);
+            changed.extend_from_slice(self.around(vertices[1]));
             self.split_shell(vertices[0], vertices[1]);
         }
         changed

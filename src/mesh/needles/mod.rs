@@ -73,7 +73,7 @@ use smallvec::SmallVec;
 use super::Mesh;
 use crate::geom::{Aabb, MAX_MOVE, NEEDLE_AREA, Tolerance};
 use geometry::{area, twice_normal};
-use work::Work;
+use work::{Shells, Work};
 
 /// The farthest, as a fraction of the shell's diagonal `d`, that removing one needle may move
 /// the surface. Collapsing a speck's shortest edge moves a vertex by up to that edge's length,
@@ -133,30 +133,58 @@ pub(crate) fn remove_needles(
             assert!(twice_area_squared(corners(t)) >= known.unwrap().least);
         }
     }
-    let any_small = match known.filter(|k| k.least >= bar) {
+    // The triangles that pass the first check (every needle does: no shell's threshold is above
+    // the mesh's), ascending.
+    let mut small_ones: Vec<u32> = Vec::new();
+    let mut scan = |from: u32, past: u32| {
+        for t in from..past {
+            if small(&mesh.triangles[t as usize]) {
+                small_ones.push(t);
+            }
+        }
+    };
+    let end = mesh.triangles.len() as u32;
+    match known.filter(|k| k.least >= bar) {
         // Only the triangles between the known ranges need the check.
         Some(k) => {
-            let end = mesh.triangles.len() as u32;
             let mut from = 0;
-            k.ranges.iter().chain([&(end, end)]).any(|&(start, past)| {
-                let between = &mesh.triangles[from as usize..start as usize];
+            for &(start, past) in k.ranges.iter().chain([&(end, end)]) {
+                scan(from, start);
                 from = past;
-                between.iter().any(small)
-            })
+            }
         }
-        None => mesh.triangles.iter().any(small),
-    };
-    if !any_small {
+        None => scan(0, end),
+    }
+    if small_ones.is_empty() {
         return 0;
     }
-    let mut work = Work::new(std::mem::take(mesh), scale);
-    // Every needle passes the first check (no shell's threshold is above the mesh's), which is
-    // the cheaper one.
-    let queue: Vec<u32> = (0..work.tris.len() as u32)
-        .filter(|&t| {
-            twice_area_squared(work.tris[t as usize].map(|i| work.positions[i as usize])) < bar
-                && work.is_needle(t)
-        })
+    let shells = Shells::new(mesh, scale);
+    let tolerance = Tolerance::RELATIVE * bbox.diagonal().min(scale);
+    let swept = NEEDLE_SWEPT_TOLERANCES * tolerance;
+    // Few needles in a large mesh (a boolean's cut): the pass runs on a patch around them and
+    // writes it back, the whole mesh's structures never built. Where it reads beyond the patch
+    // or changes a shell's volume enough to be measured, the whole mesh's pass runs instead, so
+    // the result is that pass's either way.
+    if small_ones.len() * PATCH_SHARE <= mesh.triangles.len() {
+        let (mut work, tris_in, verts_in) = Work::patch(mesh, &shells, scale, &small_ones);
+        let queue: Vec<u32> = small_ones
+            .iter()
+            .map(|t| tris_in.binary_search(t).unwrap() as u32)
+            .filter(|&t| work.is_needle(t))
+            .collect();
+        if queue.is_empty() {
+            return 0;
+        }
+        let none = vec![false; shells.count()];
+        let (change, seen_area) = run(&mut work, queue, &none, bbox.center());
+        if !work.escaped() && !(0..=none.len()).any(|s| change[s].abs() > swept * seen_area[s]) {
+            return work.finish_patch(mesh, &tris_in, &verts_in);
+        }
+    }
+    let mut work = Work::with_shells(std::mem::take(mesh), shells, scale);
+    let queue: Vec<u32> = small_ones
+        .into_iter()
+        .filter(|&t| work.is_needle(t))
         .collect();
     if queue.is_empty() {
         *mesh = Mesh {
@@ -183,8 +211,6 @@ pub(crate) fn remove_needles(
     // its shape changed. Operations never reach across shells (each changes the triangles
     // around one needle's corners), so the other shells' operations are the same again. (Until
     // round 23 one shell over the bound undid every fix of the mesh.)
-    let tolerance = Tolerance::RELATIVE * bbox.diagonal().min(scale);
-    let swept = NEEDLE_SWEPT_TOLERANCES * tolerance;
     let shells = work.shells();
     let mut frozen = vec![false; shells];
     let mut strict = frozen.clone();
@@ -237,6 +263,10 @@ pub(crate) fn remove_needles(
     *mesh = original;
     found
 }
+
+/// The pass runs on a patch around the triangles that pass its first check (see
+/// [`remove_needles`]) where they are at most this share of the mesh (one in so many).
+const PATCH_SHARE: usize = 32;
 
 /// How many times [`remove_needles`] runs, each stricter with the shells whose volume the last
 /// changed too much, before it leaves the whole mesh as it was.
@@ -305,7 +335,7 @@ fn run(
             let mut again: Vec<u32> = Vec::new();
             for u in touched {
                 for v in work.tris[u as usize] {
-                    for &w in &work.around[v as usize] {
+                    for &w in work.around(v) {
                         if !again.contains(&w) && work.is_needle(w) {
                             again.push(w);
                         }

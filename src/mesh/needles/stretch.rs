@@ -27,7 +27,7 @@ impl Work {
             return None;
         }
         let (mut dev, mut swept) = (0.0f64, 0.0);
-        for &u in &self.around[from as usize] {
+        for &u in self.around(from) {
             let old = self.tris[u as usize];
             let before = self.corners(old);
             let after = self.corners_moved(old, from, at);
@@ -69,7 +69,7 @@ impl Work {
         let (a, b, v) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
         let [pa, pb, pv] = [a, b, v].map(|w| self.positions[w as usize]);
         let mut normal = DVec3::ZERO;
-        for &u in &self.around[v as usize] {
+        for &u in self.around(v) {
             if u != t {
                 normal += twice_normal(self.corners(self.tris[u as usize]));
             }
@@ -80,7 +80,7 @@ impl Work {
         let height = 3.0 * self.threshold(tri) / pa.distance(pb);
         let at = pa + along * (pv - pa).dot(along) + away * height;
         let (mut dev, mut swept) = (0.0f64, 0.0);
-        for &u in &self.around[v as usize] {
+        for &u in self.around(v) {
             let old = self.tris[u as usize];
             let before = self.corners(old);
             let after = self.corners_moved(old, v, at);

@@ -1,6 +1,8 @@
 //! The mesh the needle pass edits: triangles with liveness, the triangles around each vertex,
 //! each shell's thresholds; lookups, linking and writing the result back.
 
+use std::cell::Cell;
+
 use glam::DVec3;
 use smallvec::SmallVec;
 
@@ -21,8 +23,13 @@ pub(super) struct Work {
     pub(super) tris: Vec<[u32; 3]>,
     pub(super) sources: Vec<u32>,
     pub(super) alive: Vec<bool>,
-    /// Live triangles around each vertex.
-    pub(super) around: Vec<SmallVec<[u32; 8]>>,
+    /// Live triangles around each vertex (read through [`Work::around`]).
+    around: Vec<SmallVec<[u32; 8]>>,
+    /// In a [`patch`](Work::patch), per vertex: whether every triangle around it is in the
+    /// patch (empty for the whole mesh).
+    complete: Vec<bool>,
+    /// Whether the triangles around a vertex that is not complete were read.
+    escaped: Cell<bool>,
     /// Per vertex: its shell's index.
     pub(super) shell: Vec<u32>,
     /// Per shell: needle area, largest move, live triangle count.
@@ -47,54 +54,146 @@ pub(super) struct Work {
 
 impl Work {
     pub(super) fn new(mesh: Mesh, scale: f64) -> Self {
+        let shells = Shells::new(&mesh, scale);
+        Work::with_shells(mesh, shells, scale)
+    }
+
+    /// The work over the whole `mesh`, whose shells are `shells`.
+    pub(super) fn with_shells(mesh: Mesh, shells: Shells, scale: f64) -> Self {
         let n = mesh.positions.len();
-        let mut sets = DisjointSets::new(n);
-        for t in &mesh.triangles {
-            sets.union_all(t.map(|v| v as usize));
-        }
-        let mut shell = vec![u32::MAX; n];
-        let mut boxes: Vec<Aabb> = Vec::new();
-        let mut shell_tris: Vec<usize> = Vec::new();
-        for t in &mesh.triangles {
-            let root = sets.find(t[0] as usize);
-            if shell[root] == u32::MAX {
-                shell[root] = boxes.len() as u32;
-                boxes.push(Aabb::EMPTY);
-                shell_tris.push(0);
-            }
-            let s = shell[root] as usize;
-            shell_tris[s] += 1;
-            for &v in t {
-                boxes[s].grow(mesh.positions[v as usize]);
-            }
-        }
-        for v in 0..n {
-            shell[v] = shell[sets.find(v)];
-        }
-        let diag: Vec<f64> = boxes.iter().map(|b| b.diagonal().min(scale)).collect();
         let mut around: Vec<SmallVec<[u32; 8]>> = vec![SmallVec::new(); n];
         for (t, tri) in mesh.triangles.iter().enumerate() {
             for &v in tri {
                 around[v as usize].push(t as u32);
             }
         }
+        let shell = shells.of_vertex.clone();
+        Work::with(mesh, around, Vec::new(), shell, shells, scale)
+    }
+
+    /// The work over the patch of `mesh` around the triangles `centres` (ascending): every
+    /// triangle with a corner within [`PATCH_RINGS`] edges of a corner of one of them, the
+    /// vertices and triangles numbered in their order in `mesh`, so that every choice the pass
+    /// makes by index is made alike. The vertices within the rings are *complete* (every
+    /// triangle around them is in the patch); reading the triangles around any other marks the
+    /// work [`escaped`](Work::escaped): its result is then not the whole mesh's pass's. Also
+    /// returns the patch's triangles and vertices by their indices in `mesh`.
+    pub(super) fn patch(
+        mesh: &Mesh,
+        shells: &Shells,
+        scale: f64,
+        centres: &[u32],
+    ) -> (Self, Vec<u32>, Vec<u32>) {
+        let n = mesh.positions.len();
+        // Per vertex: 0 outside, 1 on the patch's rim (used by it, not complete), 2 complete.
+        let mut mark = vec![0u8; n];
+        for &t in centres {
+            for v in mesh.triangles[t as usize] {
+                mark[v as usize] = 2;
+            }
+        }
+        // Each ring: the corners of the triangles at a complete vertex become complete.
+        for _ in 0..PATCH_RINGS {
+            let mut grown: Vec<u32> = Vec::new();
+            for tri in &mesh.triangles {
+                if tri.iter().any(|&v| mark[v as usize] == 2) {
+                    grown.extend(tri.iter().copied().filter(|&v| mark[v as usize] == 0));
+                }
+            }
+            for v in grown {
+                mark[v as usize] = 2;
+            }
+        }
+        let mut tris_in: Vec<u32> = Vec::new();
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            if tri.iter().any(|&v| mark[v as usize] == 2) {
+                tris_in.push(t as u32);
+                for &v in tri {
+                    if mark[v as usize] == 0 {
+                        mark[v as usize] = 1;
+                    }
+                }
+            }
+        }
+        let mut local = vec![u32::MAX; n];
+        let mut verts_in: Vec<u32> = Vec::new();
+        let mut complete: Vec<bool> = Vec::new();
+        for (v, &m) in mark.iter().enumerate() {
+            if m > 0 {
+                local[v] = verts_in.len() as u32;
+                verts_in.push(v as u32);
+                complete.push(m == 2);
+            }
+        }
+        let triangles: Vec<[u32; 3]> = tris_in
+            .iter()
+            .map(|&t| mesh.triangles[t as usize].map(|v| local[v as usize]))
+            .collect();
+        let mut around: Vec<SmallVec<[u32; 8]>> = vec![SmallVec::new(); verts_in.len()];
+        for (t, tri) in triangles.iter().enumerate() {
+            for &v in tri {
+                around[v as usize].push(t as u32);
+            }
+        }
+        let part = Mesh {
+            positions: verts_in
+                .iter()
+                .map(|&v| mesh.positions[v as usize])
+                .collect(),
+            triangles,
+            sources: tris_in.iter().map(|&t| mesh.sources[t as usize]).collect(),
+        };
+        let shell = verts_in
+            .iter()
+            .map(|&v| shells.of_vertex[v as usize])
+            .collect();
+        let work = Work::with(part, around, complete, shell, shells.clone(), scale);
+        (work, tris_in, verts_in)
+    }
+
+    fn with(
+        mesh: Mesh,
+        around: Vec<SmallVec<[u32; 8]>>,
+        complete: Vec<bool>,
+        shell: Vec<u32>,
+        shells: Shells,
+        scale: f64,
+    ) -> Self {
+        let diag = shells.diagonal;
         Work {
             first_shell: shell.clone(),
-            strict: vec![false; boxes.len()],
-            slab: vec![f64::INFINITY; boxes.len()],
+            strict: vec![false; diag.len()],
+            slab: vec![f64::INFINITY; diag.len()],
             alive: vec![true; mesh.triangles.len()],
             positions: mesh.positions,
             tris: mesh.triangles,
             sources: mesh.sources,
             around,
+            complete,
+            escaped: Cell::new(false),
             shell,
             needle_area: diag.iter().map(|d| NEEDLE_AREA * d * d).collect(),
             max_move: diag.iter().map(|d| SPECK_MOVE * d).collect(),
             tolerance: diag.iter().map(|d| Tolerance::RELATIVE * d).collect(),
             diagonal: diag,
-            shell_tris,
+            shell_tris: shells.tris,
             scale,
         }
+    }
+
+    /// The live triangles around vertex `v`. In a [`patch`](Work::patch), reading those of a
+    /// vertex that is not complete marks the work escaped.
+    pub(super) fn around(&self, v: u32) -> &[u32] {
+        if self.complete.get(v as usize) == Some(&false) {
+            self.escaped.set(true);
+        }
+        &self.around[v as usize]
+    }
+
+    /// Whether the pass read the triangles around a vertex its patch does not hold whole (see
+    /// [`Work::patch`]).
+    pub(super) fn escaped(&self) -> bool {
+        self.escaped.get()
     }
 
     /// How many shells the pass found.
@@ -127,7 +226,7 @@ impl Work {
         while next < side.len() {
             let v = side[next];
             next += 1;
-            for &u in &self.around[v as usize] {
+            for &u in self.around(v) {
                 for w in self.tris[u as usize] {
                     if w == a {
                         return;
@@ -142,7 +241,7 @@ impl Work {
         let mut count = 0;
         for &v in &side {
             self.shell[v as usize] = new;
-            count += self.around[v as usize].len();
+            count += self.around(v).len();
         }
         // Each triangle is counted at its three corners.
         let count = count / 3;
@@ -157,7 +256,7 @@ impl Work {
         for shell in [old, new] {
             let mut bbox = Aabb::EMPTY;
             for v in 0..self.positions.len() {
-                if self.shell[v] == shell && !self.around[v].is_empty() {
+                if self.shell[v] == shell && !self.around(v as u32).is_empty() {
                     bbox.grow(self.positions[v]);
                 }
             }
@@ -171,7 +270,7 @@ impl Work {
 
     /// The live triangle with directed edge `a`→`b`, if any.
     pub(super) fn with_edge(&self, a: u32, b: u32) -> Option<u32> {
-        self.around[a as usize].iter().copied().find(|&t| {
+        self.around(a).iter().copied().find(|&t| {
             let tri = self.tris[t as usize];
             (0..3).any(|k| tri[k] == a && tri[(k + 1) % 3] == b)
         })
@@ -197,7 +296,7 @@ impl Work {
     pub(super) fn star(&self, vertices: &[u32]) -> SmallVec<[u32; 24]> {
         let mut star = SmallVec::new();
         for &v in vertices {
-            for &u in &self.around[v as usize] {
+            for &u in self.around(v) {
                 if !star.contains(&u) {
                     star.push(u);
                 }
@@ -320,32 +419,116 @@ impl Work {
 
     /// Writes the live triangles and the positions they use back; returns the needles left.
     pub(super) fn finish(self, mesh: &mut Mesh) -> usize {
-        let left = (0..self.tris.len() as u32)
-            .filter(|&t| self.is_needle(t))
-            .count();
-        let mut index = vec![u32::MAX; self.positions.len()];
-        let mut positions = Vec::with_capacity(self.positions.len());
-        let mut triangles = Vec::with_capacity(self.tris.len());
-        let mut sources = Vec::with_capacity(self.tris.len());
-        for (t, tri) in self.tris.iter().enumerate() {
-            if !self.alive[t] {
-                continue;
-            }
-            triangles.push(tri.map(|v| {
-                if index[v as usize] == u32::MAX {
-                    index[v as usize] = positions.len() as u32;
-                    positions.push(self.positions[v as usize]);
-                }
-                index[v as usize]
-            }));
-            sources.push(self.sources[t]);
-        }
-        *mesh = Mesh {
-            positions,
-            triangles,
-            sources,
-        };
+        let left = self.needles_left();
+        *mesh = compact(&self.positions, &self.tris, &self.sources, &self.alive);
         left
+    }
+
+    /// [`Work::finish`] for a [`patch`](Work::patch) of `mesh` (its triangles and vertices
+    /// `tris_in` and `verts_in` there): the patch written into `mesh`, then the live triangles
+    /// and the positions they use kept. The triangles outside it were no needles and are as
+    /// they were (the shells' thresholds are too: no neck was cut), so the needles left are the
+    /// patch's.
+    pub(super) fn finish_patch(self, mesh: &mut Mesh, tris_in: &[u32], verts_in: &[u32]) -> usize {
+        let left = self.needles_left();
+        for (&v, &p) in verts_in.iter().zip(&self.positions) {
+            mesh.positions[v as usize] = p;
+        }
+        let mut alive = vec![true; mesh.triangles.len()];
+        for (k, &t) in tris_in.iter().enumerate() {
+            mesh.triangles[t as usize] = self.tris[k].map(|v| verts_in[v as usize]);
+            mesh.sources[t as usize] = self.sources[k];
+            alive[t as usize] = self.alive[k];
+        }
+        *mesh = compact(&mesh.positions, &mesh.triangles, &mesh.sources, &alive);
+        left
+    }
+
+    fn needles_left(&self) -> usize {
+        (0..self.tris.len() as u32)
+            .filter(|&t| self.is_needle(t))
+            .count()
+    }
+}
+
+/// The `alive` triangles of a mesh and the positions they use, numbered in order of first use.
+fn compact(positions: &[DVec3], tris: &[[u32; 3]], sources: &[u32], alive: &[bool]) -> Mesh {
+    let mut index = vec![u32::MAX; positions.len()];
+    let mut kept = Vec::with_capacity(positions.len());
+    let live = alive.iter().filter(|&&a| a).count();
+    let mut triangles = Vec::with_capacity(live);
+    let mut kept_sources = Vec::with_capacity(live);
+    for ((tri, &source), _) in tris.iter().zip(sources).zip(alive).filter(|(_, a)| **a) {
+        let mut out = [0u32; 3];
+        for (o, &v) in out.iter_mut().zip(tri) {
+            let i = &mut index[v as usize];
+            if *i == u32::MAX {
+                *i = kept.len() as u32;
+                kept.push(positions[v as usize]);
+            }
+            *o = *i;
+        }
+        triangles.push(out);
+        kept_sources.push(source);
+    }
+    Mesh {
+        positions: kept,
+        triangles,
+        sources: kept_sources,
+    }
+}
+
+/// How many rings of edges around the needles a [`Work::patch`] holds complete. The pass reads
+/// the triangles around a needle's corners and, after an operation, around the corners of the
+/// triangles it changed (one ring out); a cascade of needles reaches further, and escapes.
+const PATCH_RINGS: usize = 3;
+
+/// A mesh's shells as the needle pass numbers them (in the order of their first triangles):
+/// per vertex its shell, per shell its triangle count and its diagonal (capped by the scale).
+#[derive(Clone)]
+pub(super) struct Shells {
+    pub(super) of_vertex: Vec<u32>,
+    tris: Vec<usize>,
+    diagonal: Vec<f64>,
+}
+
+impl Shells {
+    pub(super) fn count(&self) -> usize {
+        self.tris.len()
+    }
+
+    pub(super) fn new(mesh: &Mesh, scale: f64) -> Self {
+        let n = mesh.positions.len();
+        let mut sets = DisjointSets::new(n);
+        for t in &mesh.triangles {
+            sets.union_all(t.map(|v| v as usize));
+        }
+        // Shells numbered by their first triangles, by root vertex.
+        let mut shell = vec![u32::MAX; n];
+        let mut shell_tris: Vec<usize> = Vec::new();
+        for t in &mesh.triangles {
+            let root = sets.find(t[0] as usize);
+            if shell[root] == u32::MAX {
+                shell[root] = shell_tris.len() as u32;
+                shell_tris.push(0);
+            }
+            shell_tris[shell[root] as usize] += 1;
+        }
+        // Each box grown by the shell's vertices once each (not once per corner: the same box).
+        // A vertex no triangle uses is in no shell.
+        let mut boxes = vec![Aabb::EMPTY; shell_tris.len()];
+        for v in 0..n {
+            let s = shell[sets.find(v)];
+            shell[v] = s;
+            if let Some(b) = boxes.get_mut(s as usize) {
+                b.grow(mesh.positions[v]);
+            }
+        }
+        Shells {
+            of_vertex: shell,
+            tris: shell_tris,
+            diagonal: boxes.iter().map(|b| b.diagonal().min(scale)).collect(),
+        }
     }
 }
 
