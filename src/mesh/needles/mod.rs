@@ -100,6 +100,18 @@ pub(crate) fn remove_needles(
     scale: Option<f64>,
     known: Option<&KnownAreas>,
 ) -> usize {
+    remove_needles_patched(mesh, scale, known, PATCH_SHARE, PATCH_RINGS)
+}
+
+/// [`remove_needles`], run on a patch `rings` deep around the triangles that pass the first
+/// check where they are at most one in `share` of the mesh (see [`Work::patch`]).
+fn remove_needles_patched(
+    mesh: &mut Mesh,
+    scale: Option<f64>,
+    known: Option<&KnownAreas>,
+    share: usize,
+    rings: usize,
+) -> usize {
     let n = mesh.positions.len();
     // Positions are checked once each where all are finite (every one is used, as `to_mesh`
     // leaves them), not once per corner.
@@ -165,8 +177,8 @@ pub(crate) fn remove_needles(
     // writes it back, the whole mesh's structures never built. Where it reads beyond the patch
     // or changes a shell's volume enough to be measured, the whole mesh's pass runs instead, so
     // the result is that pass's either way.
-    if small_ones.len() * PATCH_SHARE <= mesh.triangles.len() {
-        let (mut work, tris_in, verts_in) = Work::patch(mesh, &shells, scale, &small_ones);
+    if small_ones.len() <= mesh.triangles.len() / share {
+        let (mut work, tris_in, verts_in) = Work::patch(mesh, &shells, scale, &small_ones, rings);
         let queue: Vec<u32> = small_ones
             .iter()
             .map(|t| tris_in.binary_search(t).unwrap() as u32)
@@ -267,6 +279,11 @@ pub(crate) fn remove_needles(
 /// The pass runs on a patch around the triangles that pass its first check (see
 /// [`remove_needles`]) where they are at most this share of the mesh (one in so many).
 const PATCH_SHARE: usize = 32;
+
+/// How many rings of edges around the needles a patch holds complete (see [`Work::patch`]).
+/// The pass reads the triangles around a needle's corners and, after an operation, around the
+/// corners of the triangles it changed (one ring out); a cascade reaches further, and escapes.
+const PATCH_RINGS: usize = 3;
 
 /// How many times [`remove_needles`] runs, each stricter with the shells whose volume the last
 /// changed too much, before it leaves the whole mesh as it was.

@@ -5,7 +5,7 @@ mod guard;
 
 use glam::DVec3;
 
-use super::remove_needles;
+use super::{remove_needles, remove_needles_patched};
 use crate::mesh::Mesh;
 
 /// A mesh from OBJ-like text: `v x y z` and `f a b c` (1-based) lines.
@@ -46,6 +46,25 @@ fn removes_every_needle_keeping_the_volume(mesh: &mut Mesh) {
         "{report}"
     );
     assert!((mesh.volume() - volume).abs() < 1e-15 * volume.abs().max(1.0));
+}
+
+/// The pass on a patch around the needles gives the whole mesh's result, bit for bit, however
+/// deep the patch: with no ring, every operation reads beyond it and the whole mesh's pass
+/// runs; with one or more, a neck cut (which looks over its whole shell) still does.
+#[test]
+fn a_patch_gives_the_whole_meshs_result() {
+    for text in [PATCH_OF_SPECKS, NECK_OF_SPECKS, SLIT_TIP] {
+        let mut whole = read(text);
+        let left = remove_needles_patched(&mut whole, None, None, usize::MAX, 0);
+        for rings in [0, 1, 2, 3] {
+            let mut patched = read(text);
+            let patched_left = remove_needles_patched(&mut patched, None, None, 1, rings);
+            assert_eq!(patched_left, left);
+            assert_eq!(patched.positions, whole.positions);
+            assert_eq!(patched.triangles, whole.triangles);
+            assert_eq!(patched.sources, whole.sources);
+        }
+    }
 }
 
 /// The south pole of two spheres (radius 0.4375, 11 and 3 segments) at one centre, one turned

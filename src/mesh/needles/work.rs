@@ -72,7 +72,7 @@ impl Work {
     }
 
     /// The work over the patch of `mesh` around the triangles `centres` (ascending): every
-    /// triangle with a corner within [`PATCH_RINGS`] edges of a corner of one of them, the
+    /// triangle with a corner within `rings` edges of a corner of one of them, the
     /// vertices and triangles numbered in their order in `mesh`, so that every choice the pass
     /// makes by index is made alike. The vertices within the rings are *complete* (every
     /// triangle around them is in the patch); reading the triangles around any other marks the
@@ -83,6 +83,7 @@ impl Work {
         shells: &Shells,
         scale: f64,
         centres: &[u32],
+        rings: usize,
     ) -> (Self, Vec<u32>, Vec<u32>) {
         let n = mesh.positions.len();
         // Per vertex: 0 outside, 1 on the patch's rim (used by it, not complete), 2 complete.
@@ -93,7 +94,7 @@ impl Work {
             }
         }
         // Each ring: the corners of the triangles at a complete vertex become complete.
-        for _ in 0..PATCH_RINGS {
+        for _ in 0..rings {
             let mut grown: Vec<u32> = Vec::new();
             for tri in &mesh.triangles {
                 if tri.iter().any(|&v| mark[v as usize] == 2) {
@@ -477,11 +478,6 @@ fn compact(positions: &[DVec3], tris: &[[u32; 3]], sources: &[u32], alive: &[boo
         sources: kept_sources,
     }
 }
-
-/// How many rings of edges around the needles a [`Work::patch`] holds complete. The pass reads
-/// the triangles around a needle's corners and, after an operation, around the corners of the
-/// triangles it changed (one ring out); a cascade of needles reaches further, and escapes.
-const PATCH_RINGS: usize = 3;
 
 /// A mesh's shells as the needle pass numbers them (in the order of their first triangles):
 /// per vertex its shell, per shell its triangle count and its diagonal (capped by the scale).
