@@ -56,6 +56,13 @@
 //! `(p, q, w)` of three, a disk for a disk, whose edge `pq` then meets the link condition: the
 //! topology is kept); all need every new triangle to keep its orientation and have more than
 //! zero area. A needle that no operation can remove stays (the report still counts it).
+//!
+//! Where few triangles pass the first check (a boolean's needles, along its cut), the pass runs
+//! on a patch: the triangles within three rings of edges around them, numbered in the mesh's
+//! order, so every choice by index is the same ([`Work::patch`]). Only the shells are found
+//! over the whole mesh. Where the pass reads the triangles around a vertex the patch does not
+//! hold whole (a neck cut looks over its whole shell), or a shell's volume changes enough to
+//! be measured, the whole mesh's pass runs instead: the result is that pass's either way.
 
 mod collapse;
 mod fix;
