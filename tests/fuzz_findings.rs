@@ -474,13 +474,13 @@ fn union_with_a_box_turned_1e_9_degrees_on_a_cylinder_s_top_pairs_the_touching_s
 /// (closed, genus 0, volume 0.25) kept one needle: a flat cap 1.8e-4 long, 2.1e-8 high (area
 /// 1.9e-12) on the second box's bottom edge. The needle pass never saw it: the boxes' bounding
 /// boxes meet in a region 0.085 across, and the pass's threshold, by the shell's diagonal (1.72)
-/// capped at 16 regions (1.36), was 1.86e-12, the report's (by 1.72) 2.95e-12. With
-/// `NEEDLE_REGION_REACH` at 64 the pass flips it (volume unchanged; cross-check 900/900, the
-/// benchmarks' outputs identical), but then `to_mesh` also edits the whole bars of the scene
-/// `bsp_4` (shells 10⁶ across): 24 needles left of its 40, which that test counts on keeping.
+/// capped at 16 regions (1.36), was 1.86e-12, the report's (by 1.72) 2.95e-12. The pass now
+/// judges needles by the shell's own diagonal, as the report does, and bounds its moves at the
+/// capped one; beyond the cap only thin needles (a hair from an edge) are its to remove, so
+/// `bsp_4`'s bars (shells 10⁶ across) keep their 40 (`Work::is_needle` in
+/// `mesh/needles/work.rs`): the cap goes, the mesh closed and its volume the solid's.
 #[test]
-#[ignore = "open: needle — a flat cap (area 1.9e-12) on a shell 20 regions across: to_mesh caps the needle threshold's diagonal at NEEDLE_REGION_REACH (16) regions, 1.86e-12, below the report's 2.95e-12; reach 64 takes it but edits bsp_4's whole bars"]
-fn union_with_a_box_turned_7_7e_4_rad_keeps_a_needle() {
+fn union_with_a_box_turned_7_7e_4_rad_leaves_no_needle() {
     replay_with(
         &[
             0x00, 0xff, 0xff, 0x12, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x08, 0x08, 0x08, 0x00,

@@ -9,7 +9,7 @@
 #[path = "common/fuzz_replay.rs"]
 mod fuzz_replay;
 
-use fuzz_replay::{program, replay_file};
+use fuzz_replay::{program, replay, replay_file};
 
 // Found by a 10-minute `booleans` run in round 17 with libFuzzer's fork mode (seed 1706,
 // `-fork=1 -ignore_crashes=1`, 38,826 executions in 602 s): 38 failing inputs, every one passing
@@ -461,21 +461,33 @@ fn the_crossing_line_band_leaves_a_flat_shell() {
 /// 1.25e-6) to collapse an edge 2e-11 long. Named below as
 /// `a_needle_at_a_wedges_thin_end_collapses_without_sliding_along_its_crease`.
 ///
+/// 3c2ff807 (an OBJ 0.5 box whose top edge touches a 1.5 cube turned 1e-5° along its edge,
+/// overlapping it by 9.2e-5, less a cube turned freely: step 0 closed with one needle) since
+/// the needle pass judges needles by the shell's own diagonal, as the report does: the union's
+/// shell (3.46 across) is larger than `NEEDLE_REGION_REACH` (16) times the region where the
+/// operands met (the tolerance there, set by the coordinates' floor, makes it 0.085), so its
+/// threshold was 1.86e-12 against the report's 1.2e-11, and a sliver of 7.7e-12 along the
+/// cube's edge (1.5 long, 1e-11 high: a cut's vertex a hair from the edge) stayed. Its moves
+/// are still bounded at the capped scale, and beyond it only thin needles are its to remove
+/// (`Work::is_needle` in `mesh/needles/work.rs`). Step 0 alone is
+/// `union_of_a_box_touching_a_cube_turned_1e_5_degrees_along_its_edge_leaves_no_needle`.
+///
 /// Also passing since the changes named at [`FORK_PASSING`]: the inputs not named above.
-const FORK_20_PASSING: [&str; 104] = [
+const FORK_20_PASSING: [&str; 105] = [
     "04880fb6", "060752d1", "0afdfd64", "0bebd350", "1194b103", "12758e1c", "12bcee43", "1886ef4e",
     "1d6b6b28", "1d7d9f8a", "1f854764", "20254c75", "22568913", "22b67390", "24057533", "25a6e85f",
-    "2a7dd67a", "2d7b59dd", "2f1db746", "3645ffb4", "394fbf5b", "3ecaaeed", "42b00a8c", "43f8dc80",
-    "44bbfb06", "45e7cb01", "4b6fae9d", "4dba1202", "50f56fc8", "52a63048", "53fd6805", "54ad2229",
-    "5919d466", "5927f563", "5ba8f6ed", "5be20e4a", "5f7ef5a2", "60e1b472", "6a886bb6", "6c1d9139",
-    "6c2460ab", "74027838", "75be2603", "778ac30a", "78085500", "79dd0a25", "7acf667b", "7d6886ee",
-    "7eb5e225", "7ee590be", "7f2fbc81", "7f88a284", "8116c238", "822b0d3d", "83b87dcb", "84cb559e",
-    "84ce80c0", "87f26b5a", "8936dbd6", "8dea14d6", "91c935ab", "94d83441", "9530713d", "9679585b",
-    "97cf8f64", "98725c3d", "9ace493f", "9d46e77d", "a30a743f", "a3a7185f", "aaf8bd05", "ad644dcd",
-    "afdfb2bf", "b07b43ca", "b770c958", "c095e8fc", "c287ef50", "c724056e", "c9724cd5", "c9f5e09e",
-    "c9f9a708", "ce00c570", "d116749a", "d3147b45", "d642c6e2", "d6f045bf", "d8a85c01", "dcbd5cd9",
-    "de6a214f", "df3549fa", "e02e0760", "e0c0778c", "e3c98fcd", "e5d963a7", "e9c633a3", "ea147c0f",
-    "eb2498a7", "ebb7181c", "edf27eb0", "ef943716", "f385f178", "fa3003dd", "fc4b5873", "fe9275bb",
+    "2a7dd67a", "2d7b59dd", "2f1db746", "3645ffb4", "394fbf5b", "3c2ff807", "3ecaaeed", "42b00a8c",
+    "43f8dc80", "44bbfb06", "45e7cb01", "4b6fae9d", "4dba1202", "50f56fc8", "52a63048", "53fd6805",
+    "54ad2229", "5919d466", "5927f563", "5ba8f6ed", "5be20e4a", "5f7ef5a2", "60e1b472", "6a886bb6",
+    "6c1d9139", "6c2460ab", "74027838", "75be2603", "778ac30a", "78085500", "79dd0a25", "7acf667b",
+    "7d6886ee", "7eb5e225", "7ee590be", "7f2fbc81", "7f88a284", "8116c238", "822b0d3d", "83b87dcb",
+    "84cb559e", "84ce80c0", "87f26b5a", "8936dbd6", "8dea14d6", "91c935ab", "94d83441", "9530713d",
+    "9679585b", "97cf8f64", "98725c3d", "9ace493f", "9d46e77d", "a30a743f", "a3a7185f", "aaf8bd05",
+    "ad644dcd", "afdfb2bf", "b07b43ca", "b770c958", "c095e8fc", "c287ef50", "c724056e", "c9724cd5",
+    "c9f5e09e", "c9f9a708", "ce00c570", "d116749a", "d3147b45", "d642c6e2", "d6f045bf", "d8a85c01",
+    "dcbd5cd9", "de6a214f", "df3549fa", "e02e0760", "e0c0778c", "e3c98fcd", "e5d963a7", "e9c633a3",
+    "ea147c0f", "eb2498a7", "ebb7181c", "edf27eb0", "ef943716", "f385f178", "fa3003dd", "fc4b5873",
+    "fe9275bb",
 ];
 
 /// The inputs of the round-20 fork run that pass now ([`FORK_20_PASSING`]).
@@ -515,7 +527,7 @@ fn the_round_20_fork_run_inputs_that_pass() {
 /// bottom; minimised (ignored) as
 /// `near_coplanar_corners::a_wedge_under_a_face_turned_a_hair_stays_inside_the_face_beside_it`.
 #[test]
-#[ignore = "open: near-coplanar — 4 inputs of round 20's fork run fail with tiny rotations on (1 not closed, 2 mesh volume off the solid's, 1 needle), all pass with them off"]
+#[ignore = "open: near-coplanar — 3 inputs of round 20's fork run fail with tiny rotations on (1 not closed, 2 mesh volume off the solid's), all pass with them off"]
 fn the_round_20_fork_run_near_coplanar_inputs() {
     assert_fork_run_passes("round20_fork", 108, &FORK_20_PASSING);
 }
@@ -528,6 +540,20 @@ fn the_round_20_fork_run_near_coplanar_inputs() {
 #[test]
 fn difference_under_a_face_turned_a_hair_keeps_the_cubes_top_beside_the_crossing_line() {
     replay_file("round20_fork/e3c98fcd");
+}
+
+/// From the round-20 fork run (3c2ff807), its step 0 alone (36 bytes): an OBJ 0.5 box at
+/// (−0.99991, −1, −1) united with a 1.5 cube turned 1e-5° at the origin, the box's top edge
+/// along the cube's bottom edge. Closed with one needle (a sliver 1.5 long, 1e-11 high, on a
+/// shell 3.46 across): the needle pass judged it at 16 times the region where the operands met
+/// (see [`FORK_20_PASSING`]).
+#[test]
+fn union_of_a_box_touching_a_cube_turned_1e_5_degrees_along_its_edge_leaves_no_needle() {
+    replay(&[
+        0x01, 0x03, 0x03, 0x03, 0x00, 0x00, 0x08, 0x00, 0x40, 0x03, 0x03, 0x03, 0x03, 0x03, 0x00,
+        0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xd7, 0xd7, 0xd7, 0xd7, 0xd7, 0x00, 0x00, 0x00, 0x09,
+        0x2b, 0x28, 0x28, 0x28, 0x28, 0x28,
+    ]);
 }
 
 /// From the round-20 fork run (0afdfd64): step 1 leaves a wedge shell of 3.5e-10 whose thin end

@@ -129,8 +129,18 @@ pub(crate) fn needle_of_kernel(
         .max(b.distance_squared(c))
         .max(c.distance_squared(a));
     let weld = NEEDLE_WELD_TOLERANCES * Tolerance::RELATIVE * diagonal;
+    is_thin([a, b, c], area) || longest < weld * weld
+}
+
+/// Whether triangle `[a, b, c]` of `area` is thin: its longest edge more than [`NEEDLE_THIN`]
+/// times its height.
+pub(crate) fn is_thin([a, b, c]: [glam::DVec3; 3], area: f64) -> bool {
+    let longest = a
+        .distance_squared(b)
+        .max(b.distance_squared(c))
+        .max(c.distance_squared(a));
     // Height = 2·area / longest: thin when longest > THIN · height.
-    longest > 2.0 * NEEDLE_THIN * area || longest < weld * weld
+    longest > 2.0 * NEEDLE_THIN * area
 }
 
 /// True when triangle `c` is a needle in a shell whose bounding-box diagonal is `diagonal`.

@@ -7,7 +7,9 @@
 //! of a grid vertex. Both are valid topology but useless geometry, and slicers, FEM meshers and
 //! manifold3d treat them as defects.
 //!
-//! Local operations remove them, each moving the surface by at most [`SPECK_MOVE`] × d:
+//! Local operations remove them, each moving the surface by at most [`SPECK_MOVE`] × d (d
+//! capped at the scale a boolean passes; beyond it only thin needles go, see
+//! [`remove_needles`]):
 //!
 //! * **Flip** the needle's longest edge `ab` (apex `v`, neighbour `bac`) to `vc`. The new
 //!   triangles lie in the tetrahedron `abcv`, whose every point is within the apex height of
@@ -96,9 +98,13 @@ const SPECK_MOVE: f64 = 2.0 * MAX_MOVE;
 /// that use an index out of range or a non-finite position (not a mesh this pass can reason
 /// about).
 ///
-/// `scale`, where given, caps the diagonal the thresholds are taken from: a boolean passes 16
-/// times the size of the region where its operands met, so a part joined to a box 10³⁸ across
-/// keeps its triangles (by the box's diagonal, every one of them would be a needle).
+/// `scale`, where given, caps the diagonal the moves' bounds are taken from: a boolean passes
+/// 16 times the size of the region where its operands met, so a part joined to a box 10³⁸
+/// across keeps its triangles (by the box's diagonal, every one of them is a needle). Needles
+/// are judged by the shell's own diagonal, as the report judges them, but beyond the cap only
+/// thin ones are removed, within the capped bound ([`Work::is_needle`]): a sliver 1e-11 high
+/// along a cube's edge, on a shell 40 times the region (2.5 times the cap), was a needle by the
+/// report only, and stayed.
 ///
 /// `known`, where given, names triangles whose twice area, squared, is known to be at least
 /// some bound (see [`KnownAreas`]): where that bound is above the first check's, it skips them.
@@ -138,7 +144,7 @@ fn remove_needles_patched(
     for &p in &mesh.positions {
         bbox.grow(p);
     }
-    let largest_threshold = NEEDLE_AREA * bbox.diagonal().min(scale).powi(2);
+    let largest_threshold = NEEDLE_AREA * bbox.diagonal().powi(2);
     // Twice the area, squared, against twice the threshold, squared: no square root per
     // triangle (this check is all the pass does on most meshes). Relaxed by a hair so rounding
     // never skips a triangle the exact test below takes.
@@ -177,7 +183,7 @@ fn remove_needles_patched(
     if small_ones.is_empty() {
         return 0;
     }
-    let shells = Shells::new(mesh, scale);
+    let shells = Shells::new(mesh);
     let tolerance = Tolerance::RELATIVE * bbox.diagonal().min(scale);
     let swept = NEEDLE_SWEPT_TOLERANCES * tolerance;
     // Few needles in a large mesh (a boolean's cut): the pass runs on a patch around them and

@@ -39,7 +39,7 @@ impl Work {
                 return None;
             }
             swept += (twice_normal(before).dot(at - source) / 6.0).abs();
-            if !was_needle {
+            if area(before) >= self.noise_area(old) {
                 dev = dev.max(plane_distance(before, at));
             }
         }
@@ -85,11 +85,8 @@ impl Work {
             let before = self.corners(old);
             let after = self.corners_moved(old, v, at);
             let was_needle = area(before) < self.threshold(old);
-            let reference = if was_needle {
-                normal
-            } else {
-                twice_normal(before)
-            };
+            let noise = area(before) < self.noise_area(old);
+            let reference = if noise { normal } else { twice_normal(before) };
             if is_zero_area(after)
                 || twice_normal(after).dot(reference) <= 0.0
                 || ((!was_needle || u == t) && area(after) < self.threshold(old))
@@ -97,7 +94,7 @@ impl Work {
                 return None;
             }
             swept += (twice_normal(before).dot(at - pv) / 6.0).abs();
-            if !was_needle {
+            if !noise {
                 dev = dev.max(plane_distance(before, at));
             }
         }

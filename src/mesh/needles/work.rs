@@ -9,7 +9,7 @@ use smallvec::SmallVec;
 use super::SPECK_MOVE;
 use super::geometry::{area, plane_distance, twice_normal};
 use crate::disjoint_sets::DisjointSets;
-use crate::geom::{Aabb, NEEDLE_AREA, Tolerance, is_zero_area, needle_of_kernel};
+use crate::geom::{Aabb, NEEDLE_AREA, Tolerance, is_thin, is_zero_area, needle_of_kernel};
 use crate::mesh::Mesh;
 
 /// The mesh being edited: triangles with liveness, triangles per vertex and the scale of each
@@ -32,7 +32,8 @@ pub(super) struct Work {
     escaped: Cell<bool>,
     /// Per vertex: its shell's index.
     pub(super) shell: Vec<u32>,
-    /// Per shell: needle area, largest move, live triangle count.
+    /// Per shell: needle area (by its own diagonal, as the report's), largest move (by its
+    /// diagonal as capped), live triangle count.
     pub(super) needle_area: Vec<f64>,
     pub(super) max_move: Vec<f64>,
     /// The plane tolerance of booleans at the shell's scale: moves this small are always fine.
@@ -54,7 +55,7 @@ pub(super) struct Work {
 
 impl Work {
     pub(super) fn new(mesh: Mesh, scale: f64) -> Self {
-        let shells = Shells::new(&mesh, scale);
+        let shells = Shells::new(&mesh);
         Work::with_shells(mesh, shells, scale)
     }
 
@@ -160,7 +161,8 @@ impl Work {
         shells: Shells,
         scale: f64,
     ) -> Self {
-        let diag = shells.diagonal;
+        let own = shells.diagonal;
+        let diag: Vec<f64> = own.iter().map(|d| d.min(scale)).collect();
         Work {
             first_shell: shell.clone(),
             strict: vec![false; diag.len()],
@@ -173,7 +175,7 @@ impl Work {
             complete,
             escaped: Cell::new(false),
             shell,
-            needle_area: diag.iter().map(|d| NEEDLE_AREA * d * d).collect(),
+            needle_area: own.iter().map(|d| NEEDLE_AREA * d * d).collect(),
             max_move: diag.iter().map(|d| SPECK_MOVE * d).collect(),
             tolerance: diag.iter().map(|d| Tolerance::RELATIVE * d).collect(),
             diagonal: diag,
@@ -261,8 +263,9 @@ impl Work {
                     bbox.grow(self.positions[v]);
                 }
             }
-            let d = bbox.diagonal().min(self.scale);
-            self.needle_area[shell as usize] = NEEDLE_AREA * d * d;
+            let own = bbox.diagonal();
+            let d = own.min(self.scale);
+            self.needle_area[shell as usize] = NEEDLE_AREA * own * own;
             self.max_move[shell as usize] = SPECK_MOVE * d;
             self.tolerance[shell as usize] = Tolerance::RELATIVE * d;
             self.diagonal[shell as usize] = d;
@@ -315,13 +318,30 @@ impl Work {
         spans.sum::<f64>() / 6.0
     }
 
+    /// The needle area of `tri`'s shell, by its own diagonal, as the report judges it.
     pub(super) fn threshold(&self, tri: [u32; 3]) -> f64 {
         self.needle_area[self.shell[tri[0] as usize] as usize]
     }
 
-    /// A live needle the pass removes ([`crate::geom::is_needle_to_remove`]): a needle by
-    /// area that is thin, weld-sized or a speck of its shell, not its well-shaped own detail.
-    /// In a shell marked `strict` (as the pass found it), only those the kernel must remove.
+    /// The needle area at the shell's capped diagonal, the scale moves are bounded at: a
+    /// triangle below it has a plane that is noise at that scale, and a move is not measured
+    /// against it. Above it, a needle by [`Work::threshold`] (a shell larger than
+    /// `NEEDLE_REGION_REACH` regions) is still a plane the move must keep to: a part joined to
+    /// a box 10³⁸ across, every triangle of it a needle by the shell's diagonal, keeps its
+    /// shape.
+    pub(super) fn noise_area(&self, tri: [u32; 3]) -> f64 {
+        let d = self.diagonal[self.shell[tri[0] as usize] as usize];
+        NEEDLE_AREA * d * d
+    }
+
+    /// A live needle the pass removes: a needle by area, by the shell's own diagonal as the
+    /// report judges it; where the shell is larger than the scale the pass's moves are bounded
+    /// at and the triangle is a needle only by the shell's diagonal, a thin one
+    /// ([`crate::geom::NEEDLE_THIN`]: a vertex a hair from an edge), not the shape's
+    /// well-shaped detail there (an I-beam's bars 0.12 thick on shells 10⁶ across, `bsp_4`:
+    /// moves within the bound took 9 of its 40 and 3·10⁻⁸ of its volume). In a shell marked
+    /// `strict` (as the pass found it), only those the kernel must remove
+    /// ([`crate::geom::is_needle_to_remove`]).
     pub(super) fn is_needle(&self, t: u32) -> bool {
         let tri = self.tris[t as usize];
         if !self.alive[t as usize] {
@@ -331,6 +351,7 @@ impl Work {
         let a = area(corners);
         let s = self.shell[tri[0] as usize] as usize;
         a < self.needle_area[s]
+            && (a < self.noise_area(tri) || is_thin(corners, a))
             && (!self.strict[self.first_shell[tri[0] as usize] as usize]
                 || needle_of_kernel(corners, a, self.diagonal[s], self.slab[s]))
     }
@@ -354,7 +375,7 @@ impl Work {
         at: DVec3,
     ) -> Option<(f64, f64)> {
         let before = self.corners(old);
-        let needle = area(before) < self.threshold(old);
+        let needle = area(before) < self.noise_area(old);
         let reference = if needle {
             twice_normal(after)
         } else {
@@ -480,7 +501,8 @@ fn compact(positions: &[DVec3], tris: &[[u32; 3]], sources: &[u32], alive: &[boo
 }
 
 /// A mesh's shells as the needle pass numbers them (in the order of their first triangles):
-/// per vertex its shell, per shell its triangle count and its diagonal (capped by the scale).
+/// per vertex its shell, per shell its triangle count and its own diagonal (not capped: the
+/// needle area is the report's; `Work` caps it for the moves' bounds).
 #[derive(Clone)]
 pub(super) struct Shells {
     pub(super) of_vertex: Vec<u32>,
@@ -493,7 +515,7 @@ impl Shells {
         self.tris.len()
     }
 
-    pub(super) fn new(mesh: &Mesh, scale: f64) -> Self {
+    pub(super) fn new(mesh: &Mesh) -> Self {
         let n = mesh.positions.len();
         let mut sets = DisjointSets::new(n);
         for t in &mesh.triangles {
@@ -523,7 +545,7 @@ impl Shells {
         Shells {
             of_vertex: shell,
             tris: shell_tris,
-            diagonal: boxes.iter().map(|b| b.diagonal().min(scale)).collect(),
+            diagonal: boxes.iter().map(|b| b.diagonal()).collect(),
         }
     }
 }

@@ -85,12 +85,13 @@ const WELD_RETRIES: u32 = 4;
 const WIDEN_CRACKS: usize = 1024;
 
 /// How far beyond the region where a boolean's operands met (as a multiple of its diagonal) a
-/// shell's own size still sets the needle threshold in `to_mesh`. A union's shell is often a
-/// few times that region (a box joined at one corner of another): judged by the region alone,
-/// a triangle the report counts as a needle by its shell was left (a spike 1.5e-8 long on a
-/// shell 3.5 times the region). Beyond it the region caps the scale, so a part joined to a box
-/// 10³⁸ across keeps its triangles: the threshold is then at most 256 × 10⁻¹² of the region's
-/// diagonal squared, triangles under 1.6e-5 of the region across.
+/// shell's own size still sets the needle pass's bound on its moves in `to_mesh`. A union's
+/// shell is often a few times that region (a box joined at one corner of another): judged by
+/// the region alone, a triangle the report counts as a needle by its shell was left (a spike
+/// 1.5e-8 long on a shell 3.5 times the region). Beyond it the region caps the scale, so a
+/// part joined to a box 10³⁸ across keeps its triangles: the moves are then at most
+/// 32 × 10⁻⁶ of the region's diagonal, and only thin needles by the shell's diagonal are
+/// removed (see [`super::needles::remove_needles`]).
 pub(crate) const NEEDLE_REGION_REACH: f64 = 16.0;
 
 /// A polygon as a ring of welded vertex indices, with the polygon it came from.
