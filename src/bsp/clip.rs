@@ -229,18 +229,7 @@ impl Tree {
         let c = w.polygon.centroid();
         self.locate(w.link, c).unwrap_or_else(|stub| {
             if w.side != DVec3::ZERO {
-                // Routed along a face of the tree, two tolerances off it: a ray settles it, and
-                // the point is kept from the labels other fragments start from (a segment from
-                // so near the surface labelled a union of grid boxes' fragments wrongly).
-                let off = c + w.side * (2.0 * self.eps);
-                let label = surface.label(off);
-                // A face of the surface crossing that one at a small angle may lie between the
-                // fragment and that point, nearer than the tolerance: see
-                // [`Surface::crossings_off`].
-                return match surface.crossings_off(c, off, w.side, w.polygon.plane()) {
-                    Some(n) if n % 2 == 1 => label.flipped(),
-                    _ => label,
-                };
+                return self.label_routed(w, surface);
             }
             let clear = self.locate_clear(c, (CLEAR + 2.0) * self.eps) == Some(stub);
             let local = self.stub_polygons(stub);
@@ -263,6 +252,42 @@ impl Tree {
             recent.push((c, label));
             label
         })
+    }
+
+    /// The label of a fragment routed along a face of the tree into an unbuilt cell: by a ray
+    /// from two tolerances off its centroid on the side it was sent to, the point kept from the
+    /// labels other fragments start from (a segment from so near the surface labelled a union of
+    /// grid boxes' fragments wrongly). A face of the surface crossing that one at a small angle
+    /// may lie between the fragment and that point, nearer than the tolerance: see
+    /// [`Surface::crossings_off`]. Where the short segment grazes an edge of such a face, the
+    /// points halfway to the fragment's corners are tried in turn (the first label kept if
+    /// every one grazes).
+    ///
+    /// A fragment reaching an unbuilt cell lies clear of the cell's polygons, but not of faces
+    /// a nearly parallel plane on the way put elsewhere: a slab's top z = −0.4375 over a bar
+    /// turned 10⁻¹⁰° (the bar's top 2·10⁻¹³ below it there) and beside it was cut by no face of
+    /// the bar, which lie behind the bar's top, and its centroid fell on the bar's side face,
+    /// whose edge the segment grazed. The ray from beside the bar's edge read inside and the
+    /// union dropped 1.2·10⁻² of the slab's top (round 20's fork input c095e8fc, once a cube's
+    /// side faces followed its corners into the region above the bar's top: see `Corners` in
+    /// `bsp/build/face.rs`). From a point away from the edge it reads outside.
+    fn label_routed(&self, w: &Work, surface: &Surface) -> Label {
+        let c = w.polygon.centroid();
+        let halfway = w.polygon.vertices().iter().map(|&v| 0.5 * (v + c));
+        let mut grazed = None;
+        for at in std::iter::once(c).chain(halfway) {
+            let off = at + w.side * (2.0 * self.eps);
+            let label = surface.label(off);
+            let crossed = surface.crossings_off(at, off, w.side, w.polygon.plane());
+            match crossed {
+                Some(n) if n % 2 == 1 => return label.flipped(),
+                Some(_) => return label,
+                None => {
+                    grazed.get_or_insert(label);
+                }
+            }
+        }
+        grazed.unwrap_or_else(|| surface.label(c))
     }
 
     /// A point of the unbuilt cell `stub` whose label is known without walking the surface's

@@ -21,10 +21,11 @@ impl Tree {
     pub(super) fn face_node(
         &mut self,
         ids: Ids,
+        corners: &Corners,
         eps: f64,
         arena: &mut Arena,
         scratch: &mut Scratch,
-    ) -> (Node, Ids, Ids) {
+    ) -> (Node, Ids, Ids, (Corners, Corners)) {
         let (mut front, mut back) = (scratch.ids_like(&ids), scratch.ids_like(&ids));
         let Ids { near: ids, far } = ids;
         let chosen = choose_splitter(&ids, arena, eps, scratch);
@@ -132,6 +133,21 @@ impl Tree {
                 None => {}
             }
         }
+        // This node's own corners go down to the side a nearly parallel polygon went to, where
+        // that polygon's node may need the steep faces ending at them (see `Corners`).
+        let (mut front_corners, mut back_corners) = corners.split(&plane, eps);
+        let own_corners = || {
+            self.polygons[start as usize..]
+                .iter()
+                .flat_map(|p| p.vertices().iter().map(|&v| (plane.normal, v)))
+        };
+        if !wedge.ahead.is_empty() {
+            front_corners.0.extend(own_corners());
+        }
+        if !wedge.behind.is_empty() {
+            back_corners.0.extend(own_corners());
+        }
+        corners.note(&mut wedge, &plane, eps);
         // Steep polygons ending at such a vertex on the other side also bound that side.
         if !wedge.ahead.is_empty() {
             let follow = wedge.followers(&back.near, arena, &plane, eps, Side::Front);
@@ -152,7 +168,62 @@ impl Tree {
             content: own,
             own,
         };
-        (node, front, back)
+        (node, front, back, (front_corners, back_corners))
+    }
+}
+
+/// Corners of face nodes above a work item, each with its node's normal: a face node passes its
+/// own polygons' corners down to the side where a nearly parallel polygon went within the
+/// tolerance (noted in [`Wedge`]), and the node of that polygon's plane below notes those lying
+/// within the tolerance off it as `Wedge` notes its own polygons' vertices, so that the steep
+/// polygons ending at them follow to that side too.
+///
+/// `Wedge` alone serves where the steep polygons end at the nearly parallel polygon's own
+/// vertices. Where they end at the corners of the node above, the face they bound is not in
+/// the subtree: a 0.125 cube's bottom with a bar's beside it turned 10⁻¹⁰° (1.4·10⁻¹² rad,
+/// its plane 5.7·10⁻¹³ above the cube's bottom there, within the tolerance), the bar's bottom
+/// went behind the cube's, and the cube's side faces, whose corners lie within the tolerance in
+/// front of the bar's plane, behind it by the tolerance alone (`Class::BackNear`); the bar's
+/// node's front leaf read the wedge between the two planes over the cube as outside, and a slab
+/// through both kept the strip of its bottom between their crossing lines over the cube beside
+/// the cube's own bottom (the union open by 4.1·10⁻⁴, the solid 2.6·10⁻⁵ above its mesh).
+/// With the cube's corners passed down, its side faces also bound that front subtree.
+///
+/// Only nodes whose planes cross at a sine below 10⁻³ note each other's corners. Empty but
+/// where such a wedge is (no allocation otherwise).
+#[derive(Default, Clone)]
+pub(super) struct Corners(Vec<(DVec3, DVec3)>);
+
+impl Corners {
+    /// The corners reaching each side of `plane` (within `eps`: both).
+    pub(super) fn split(&self, plane: &Plane, eps: f64) -> (Corners, Corners) {
+        let (mut front, mut back) = (Corners::default(), Corners::default());
+        for &(n, v) in &self.0 {
+            let d = plane.distance(v);
+            if d >= -eps {
+                front.0.push((n, v));
+            }
+            if d <= eps {
+                back.0.push((n, v));
+            }
+        }
+        (front, back)
+    }
+
+    /// Notes in `wedge` the corners of nodes nearly parallel to `plane` within `eps` off it.
+    fn note(&self, wedge: &mut Wedge, plane: &Plane, eps: f64) {
+        for &(n, v) in &self.0 {
+            // Crossing at a sine of 10⁻³ or more: not the wedge's planes.
+            let cos = n.dot(plane.normal);
+            if cos * cos <= 1.0 - 1e-6 {
+                continue;
+            }
+            match off_within(plane, v, eps) {
+                Some(Side::Front) => wedge.ahead.push(v),
+                Some(_) => wedge.behind.push(v),
+                None => {}
+            }
+        }
     }
 }
 

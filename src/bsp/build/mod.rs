@@ -131,6 +131,9 @@ struct Work {
     focus: Option<Vec<u32>>,
     /// The cell's bounds from the axis-aligned planes above it (infinite where none bounds it).
     cell: Aabb,
+    /// Corners of face nodes above, passed down to the side a nearly parallel polygon went
+    /// to within the tolerance (see `face::Corners`).
+    corners: face::Corners,
 }
 
 impl Tree {
@@ -198,12 +201,14 @@ impl Tree {
             slot: Slot::Root,
             focus: focus.map(|f| (0..f.len() as u32).collect()),
             cell: Self::EVERYWHERE,
+            corners: face::Corners::default(),
         }];
         while let Some(Work {
             ids,
             slot,
             focus: near,
             cell,
+            corners,
         }) = work.pop()
         {
             let index = tree.nodes.len() as u32;
@@ -239,12 +244,13 @@ impl Tree {
                     .then(|| cell_plane(&ids.near, &arena, eps, &mut scratch.keys))
                     .flatten()
             });
-            let (node, front, back) = match plane {
+            let (node, front, back, (front_corners, back_corners)) = match plane {
                 Some(plane) => {
                     let (front, back) = split_cell(ids, &plane, eps, &mut arena, &mut scratch);
-                    (Node::cell(plane), front, back)
+                    let sides = corners.split(&plane, eps);
+                    (Node::cell(plane), front, back, sides)
                 }
-                None => tree.face_node(ids, eps, &mut arena, &mut scratch),
+                None => tree.face_node(ids, &corners, eps, &mut arena, &mut scratch),
             };
             // The children's cells: a face plane bounds no axis.
             let (mut front_cell, mut back_cell) = (cell, cell);
@@ -274,6 +280,7 @@ impl Tree {
                     slot: Slot::Front(index),
                     focus,
                     cell: front_cell,
+                    corners: front_corners,
                 });
             }
             if back.is_empty() {
@@ -287,6 +294,7 @@ impl Tree {
                     slot: Slot::Back(index),
                     focus: near,
                     cell: back_cell,
+                    corners: back_corners,
                 });
             }
         }
