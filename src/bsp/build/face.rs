@@ -189,8 +189,10 @@ impl Tree {
 /// the cube's own bottom (the union open by 4.1·10⁻⁴, the solid 2.6·10⁻⁵ above its mesh).
 /// With the cube's corners passed down, its side faces also bound that front subtree.
 ///
-/// Only nodes whose planes cross at a sine below 10⁻³ note each other's corners. Empty but
-/// where such a wedge is (no allocation otherwise).
+/// Only nodes whose planes cross at a sine below 10⁻³ note each other's corners: narrower than
+/// the band in which [`Wedge`] notes a node's own polygons' vertices (`ON_BAND_BELOW`, 0.1),
+/// the bound the fix was measured with; whether the two should be one is not settled. Empty
+/// but where such a wedge is (no allocation otherwise).
 #[derive(Default, Clone)]
 pub(super) struct Corners(Vec<(DVec3, DVec3)>);
 
@@ -228,7 +230,7 @@ impl Corners {
 }
 
 /// The vertices within the tolerance of a face node's plane, but off it, of polygons in planes
-/// nearly parallel to it (crossing it at a sine below 10⁻³) that [`Polygon::split`] sent to
+/// nearly parallel to it (crossing it at a sine below `ON_BAND_BELOW`, 0.1) that [`Polygon::split`] sent to
 /// one side by its narrow band: `ahead` those in front, `behind` those behind.
 ///
 /// Such a polygon, within the tolerance of the plane but judged by the band, bounds a wedge

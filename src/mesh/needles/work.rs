@@ -258,6 +258,9 @@ impl Work {
         self.slab.push(self.slab[old as usize]);
         for shell in [old, new] {
             let mut bbox = Aabb::EMPTY;
+            // Read through `around` on purpose: on a patch, a shell reaching its rim cannot be
+            // measured here, and reading a rim vertex marks the work escaped (the whole mesh's
+            // pass then runs instead).
             for v in 0..self.positions.len() {
                 if self.shell[v] == shell && !self.around(v as u32).is_empty() {
                     bbox.grow(self.positions[v]);
