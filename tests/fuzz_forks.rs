@@ -525,7 +525,7 @@ fn the_round_20_fork_run_inputs_that_pass() {
 /// the first sphere's facet (8.5e-8) among the second's pieces, and in its tree the node of
 /// that triangle's plane, behind the second's, reads the layer between the two planes
 /// (crossing at about 1e-11 rad) outside across the whole facet; the third sphere's facet,
-/// lying in that layer, is dropped with the second's pieces outside it. Minimised (ignored) as
+/// lying in that layer, is dropped with the second's pieces outside it. Replayed as it runs (ignored) as
 /// `three_turned_spheres::a_cylinder_united_with_a_sphere_then_cut_by_two_turned_copies_keeps_every_facet`.
 /// 0a15665e (an OBJ bar turned 1e-2° ∪ an OBJ box turned 1e-3° ∪ a cuboid ∪ a 0.125 cube at
 /// their centre, less a slab whose faces are the cube's top and bottom) is open at step 3

@@ -89,7 +89,7 @@ const WIDEN_CRACKS: usize = 1024;
 /// shell is often a few times that region (a box joined at one corner of another): judged by
 /// the region alone, a triangle the report counts as a needle by its shell was left (a spike
 /// 1.5e-8 long on a shell 3.5 times the region). Beyond it the region caps the scale, so a
-/// part joined to a box 10³⁸ across keeps its triangles: the moves are then at most
+/// part joined to a box 10³⁸ across keeps its well-shaped triangles: the moves are then at most
 /// 32 × 10⁻⁶ of the region's diagonal, and only thin needles by the shell's diagonal are
 /// removed (see [`super::needles::remove_needles`]).
 pub(crate) const NEEDLE_REGION_REACH: f64 = 16.0;
@@ -128,8 +128,9 @@ fn counted_repair(polygons: &[Polygon], eps: f64, index: Option<&Indexed>) -> (M
         return (Mesh::default(), 0);
     }
     let delta = WELD_TOLERANCES * eps;
-    // Needles are judged at the scale of the shell, as the report judges them, but never of
-    // more than `NEEDLE_REGION_REACH` times the region the boolean worked in (see
+    // Needles are judged at the scale of the shell, as the report judges them; the pass's moves
+    // are bounded at no more than `NEEDLE_REGION_REACH` times the region the boolean worked in,
+    // and beyond that scale only thin needles are removed (see
     // [`super::needles::remove_needles`]).
     let scale = Some(NEEDLE_REGION_REACH * eps / Tolerance::RELATIVE);
     let mut passes = u32::from(index.is_some());
