@@ -63,8 +63,9 @@
 //! on a patch: the triangles within three rings of edges around them, numbered in the mesh's
 //! order, so every choice by index is the same ([`Work::patch`]). Only the shells are found
 //! over the whole mesh. Where the pass reads the triangles around a vertex the patch does not
-//! hold whole (a neck cut whose shell reaches past the patch), or a shell's volume changes enough to
-//! be measured, the whole mesh's pass runs instead: the result is that pass's either way.
+//! hold whole (a neck cut whose shell reaches past the patch), or a shell's volume changes
+//! enough to be measured, the whole mesh's pass runs instead: the result is that pass's either
+//! way.
 
 mod collapse;
 mod fix;
@@ -100,11 +101,11 @@ const SPECK_MOVE: f64 = 2.0 * MAX_MOVE;
 ///
 /// `scale`, where given, caps the diagonal the moves' bounds are taken from: a boolean passes
 /// 16 times the size of the region where its operands met, so a part joined to a box 10³⁸
-/// across keeps its well-shaped triangles (by the box's diagonal, every one of them is a needle). Needles
-/// are judged by the shell's own diagonal, as the report judges them, but beyond the cap only
-/// thin ones are removed, within the capped bound ([`Work::is_needle`]): a sliver 1e-11 high
-/// along a cube's edge, on a shell 40 times the region (2.5 times the cap), was a needle by the
-/// report only, and stayed.
+/// across keeps its well-shaped triangles (by the box's diagonal, every one of them is a
+/// needle). Needles are judged by the shell's own diagonal, as the report judges them, but
+/// beyond the cap only thin ones are removed, within the capped bound ([`Work::is_needle`]): a
+/// sliver 1e-11 high along a cube's edge, on a shell 40 times the region (2.5 times the cap),
+/// was a needle by the report only, and stayed.
 ///
 /// `known`, where given, names triangles whose twice area, squared, is known to be at least
 /// some bound (see [`KnownAreas`]): where that bound is above the first check's, it skips them.

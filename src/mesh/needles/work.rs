@@ -452,9 +452,8 @@ impl Work {
     /// [`Work::finish`] for a [`patch`](Work::patch) of `mesh` (its triangles and vertices
     /// `tris_in` and `verts_in` there): the patch written into `mesh`, then the live triangles
     /// and the positions they use kept. The triangles outside it were no needles and are as
-    /// they were (the shells' thresholds are too, but for a shell a neck cut split
-    /// wholly inside the patch), so the needles left are the
-    /// patch's.
+    /// they were (the shells' thresholds are too, but for a shell a neck cut split wholly
+    /// inside the patch), so the needles left are the patch's.
     pub(super) fn finish_patch(self, mesh: &mut Mesh, tris_in: &[u32], verts_in: &[u32]) -> usize {
         let left = self.needles_left();
         for (&v, &p) in verts_in.iter().zip(&self.positions) {
