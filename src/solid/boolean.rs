@@ -242,13 +242,13 @@ fn boolean_at_least(
     let (near_a, near_b) = surface_a.near_each_other(&surface_b, margin);
     let (a_kept, b_kept) = rayon::join(
         || {
-            let tree_b = focused_tree(&b, &near_b, &a, &near_a, eps, meter);
+            let tree_b = focused_tree((&b, &surface_b, &near_b), (&surface_a, &near_a), eps, meter);
             let far = keep_far(&a, &a_ids, &near_a, &surface_b, a_keep, a_flat, false);
             let near = tree_b.clip(pick(&a, &near_a), a_keep, a_rule, &surface_b, meter);
             (far, near.into_iter().map(|c| c.polygon).collect())
         },
         || {
-            let tree_a = focused_tree(&a, &near_a, &b, &near_b, eps, meter);
+            let tree_a = focused_tree((&a, &surface_a, &near_a), (&surface_b, &near_b), eps, meter);
             let turned = op == BoolOp::Difference;
             let far = keep_far(&b, &b_ids, &near_b, &surface_a, b_keep, b_flat, turned);
             let first = tree_a.clip(
@@ -384,33 +384,33 @@ fn pick(polys: &[Polygon], near: &[bool]) -> Vec<Polygon> {
 /// The tree of `solid` focused on the near polygons of `clipped`, the operand its tree clips
 /// (a polygon is near when one of the other operand's comes within the margin, see
 /// [`Surface::near_each_other`]): `solid`'s
-/// polygons not near `clipped` are carried whole.
+/// polygons not near `clipped` are carried whole. The polygons' boxes are the surfaces' own.
 fn focused_tree(
-    solid: &[Polygon],
-    solid_near: &[bool],
-    clipped: &[Polygon],
-    clipped_near: &[bool],
+    solid: (&[Polygon], &Surface, &[bool]),
+    clipped: (&Surface, &[bool]),
     eps: f64,
     meter: &Meter,
 ) -> Tree {
-    let boxes = boxes(clipped, clipped_near);
+    let (polys, surface, near) = solid;
+    let boxes = near_boxes(clipped.0.boxes(), clipped.1);
     Tree::build_focused(
-        solid,
+        polys,
         eps,
         Some(Focus {
             boxes: &boxes,
-            near: solid_near,
+            near,
+            own: surface.boxes(),
         }),
         Some(meter),
     )
 }
 
-fn boxes(polys: &[Polygon], near: &[bool]) -> Vec<Aabb> {
-    polys
+fn near_boxes(boxes: &[Aabb], near: &[bool]) -> Vec<Aabb> {
+    boxes
         .iter()
         .zip(near)
         .filter(|(_, n)| **n)
-        .map(|(p, _)| p.bbox())
+        .map(|(b, _)| *b)
         .collect()
 }
 

@@ -58,6 +58,11 @@ impl<'a> Surface<'a> {
         }
     }
 
+    /// The polygons' boxes, in order (each `Polygon::bbox`).
+    pub fn boxes(&self) -> &[Aabb] {
+        &self.boxes
+    }
+
     /// Polygon `g` of the surface.
     pub fn polygon(&self, g: u32) -> &Polygon {
         &self.polygons[g as usize]
