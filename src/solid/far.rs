@@ -11,12 +11,12 @@ use crate::polygon::Polygon;
 
 use super::vertex_ids::{VertexIds, reach};
 
-/// One operand's kept far polygons: `polygons[..core]` the core, `polygons[core..core + rim]`
-/// the rim, both with their corners' vertex ids in `ids`; the rest (an operand not indexed)
-/// without.
+/// One operand's kept far polygons, by their indices in the operand (cloned once, straight into
+/// the output, by [`assemble`]): `kept[..core]` the core, `kept[core..core + rim]` the rim,
+/// both with their corners' vertex ids in `ids`; the rest (an operand not indexed) without.
 #[derive(Default)]
 pub(super) struct Far {
-    polygons: Vec<Polygon>,
+    kept: Vec<u32>,
     ids: Vec<u32>,
     core: usize,
     rim: usize,
@@ -92,7 +92,7 @@ pub(super) fn keep_far(
     }
     let Some(flat) = flat else {
         return Far {
-            polygons: kept.iter().map(|&i| polys[i as usize].clone()).collect(),
+            kept,
             ..Far::default()
         };
     };
@@ -153,7 +153,7 @@ pub(super) fn keep_far(
         push_ring(&mut out_ids, i);
     }
     Far {
-        polygons: core.iter().map(|&i| polys[i as usize].clone()).collect(),
+        kept: core,
         ids: out_ids,
         core: n_core,
         rim: n_rim,
@@ -233,18 +233,20 @@ fn mergeable(p: &Polygon, q: &Polygon, flat: f64) -> bool {
 /// The boolean's output: both operands' cores, then A's rim and the rest of A (far polygons of
 /// an operand not indexed, and the clipped ones), then B's likewise (the order the polygons had
 /// before the cores were taken out), B's polygons flipped with `flip_b`; with the index of the
-/// cores and rims, if any.
+/// cores and rims, if any. Each operand comes as its polygons, its [`Far`] (indices into them)
+/// and its clipped polygons.
 ///
-/// The polygons are moved (and B's flipped) into the output in parallel: rayon's `par_extend`
-/// of an indexed iterator writes each polygon to its own slot, so the order is the one above
-/// on any number of threads. The ids, a few words per polygon, are laid out on the calling
-/// thread.
+/// The far polygons are cloned from the operands straight into the output (once: not first
+/// into a list of their own and then moved again), the clipped ones moved, and B's flipped, in
+/// parallel: rayon's `par_extend` of an indexed iterator writes each polygon to its own slot,
+/// so the order is the one above on any number of threads. The ids, a few words per polygon,
+/// are laid out on the calling thread.
 pub(super) fn assemble(
-    (mut a, a_rest): (Far, Vec<Polygon>),
-    (mut b, b_rest): (Far, Vec<Polygon>),
+    (a_polys, a, a_rest): (&[Polygon], Far, Vec<Polygon>),
+    (b_polys, b, b_rest): (&[Polygon], Far, Vec<Polygon>),
     flip_b: bool,
 ) -> (Vec<Polygon>, Option<Indexed>) {
-    let total = a.polygons.len() + a_rest.len() + b.polygons.len() + b_rest.len();
+    let total = a.kept.len() + a_rest.len() + b.kept.len() + b_rest.len();
     let core = a.core + b.core;
     let vertex_count = a.vertex_count + b.vertex_count;
     let offset = a.vertex_count;
@@ -260,27 +262,28 @@ pub(super) fn assemble(
     ids.extend(b.ids[b_split..].iter().map(|&i| i + offset));
     // Where the rims land: after both cores, and after all of A.
     let a_at = a_core + b_core;
-    let b_at = a.polygons.len() + a_rest.len() + b_core;
+    let b_at = a.kept.len() + a_rest.len() + b_core;
     let mut rim = Vec::with_capacity(a_rim + b_rim);
     rim.extend(a_at as u32..(a_at + a_rim) as u32);
     rim.extend(b_at as u32..(b_at + b_rim) as u32);
-    // A's and B's polygons past their cores, taken off the end (no tail to move).
-    let a_after: Vec<Polygon> = a.polygons.par_drain(a_core..).collect();
-    let b_after: Vec<Polygon> = b.polygons.par_drain(b_core..).collect();
     let turn = |mut p: Polygon| {
         if flip_b {
             p.flip();
         }
         p
     };
+    let a_far = |i: &u32| a_polys[*i as usize].clone();
+    let b_far = |i: &u32| turn(b_polys[*i as usize].clone());
     let mut polygons = Vec::with_capacity(total);
     polygons.par_extend(
-        std::mem::take(&mut a.polygons)
-            .into_par_iter()
-            .chain(std::mem::take(&mut b.polygons).into_par_iter().map(turn))
-            .chain(a_after.into_par_iter())
+        a.kept[..a_core]
+            .par_iter()
+            .map(a_far)
+            .chain(b.kept[..b_core].par_iter().map(b_far))
+            .chain(a.kept[a_core..].par_iter().map(a_far))
             .chain(a_rest.into_par_iter())
-            .chain(b_after.into_par_iter().chain(b_rest).map(turn)),
+            .chain(b.kept[b_core..].par_iter().map(b_far))
+            .chain(b_rest.into_par_iter().map(turn)),
     );
     let index = (core > 0).then_some(Indexed {
         core,
