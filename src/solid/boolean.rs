@@ -272,11 +272,7 @@ fn boolean_at_least(
     let ((a_far, mut a_near), (b_far, mut b_near)) = (a_kept, b_kept);
     // Both operands' cut points on three planes, two nearly parallel, made one point.
     share_near_parallel_vertices(&mut [&mut a_near, &mut b_near], eps);
-    let (polygons, index) = assemble(
-        (&a, a_far, a_near),
-        (&b, b_far, b_near),
-        op == BoolOp::Difference,
-    );
+    let (polygons, index) = assemble((a_far, a_near), (b_far, b_near), op == BoolOp::Difference);
     // A flat closed sheet bounds nothing within the tolerance; passed on, a later boolean would
     // keep one of its sides (see `flat.rs`).
     if is_flat_sheet(&polygons, flat) {

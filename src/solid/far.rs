@@ -11,11 +11,13 @@ use crate::polygon::Polygon;
 
 use super::vertex_ids::{VertexIds, reach};
 
-/// One operand's kept far polygons, by their indices in the operand (cloned once, straight into
-/// the output, by [`assemble`]): `kept[..core]` the core, `kept[core..core + rim]` the rim,
-/// both with their corners' vertex ids in `ids`; the rest (an operand not indexed) without.
+/// One operand's kept far polygons, by their indices in the operand's `polys` (cloned once,
+/// straight into the output, by [`assemble`]): `kept[..core]` the core, `kept[core..core + rim]`
+/// the rim, both with their corners' vertex ids in `ids`; the rest (an operand not indexed)
+/// without.
 #[derive(Default)]
-pub(super) struct Far {
+pub(super) struct Far<'a> {
+    polys: &'a [Polygon],
     kept: Vec<u32>,
     ids: Vec<u32>,
     core: usize,
@@ -47,15 +49,15 @@ pub(super) struct Far {
 ///
 /// With `turned` (B of a difference, whose polygons the boolean flips), each polygon's ids are
 /// laid out reversed, as its corners will be.
-pub(super) fn keep_far(
-    polys: &[Polygon],
+pub(super) fn keep_far<'a>(
+    polys: &'a [Polygon],
     ids: &VertexIds,
     near: &[bool],
     other: &Surface,
     keep: Label,
     flat: Option<f64>,
     turned: bool,
-) -> Far {
+) -> Far<'a> {
     debug_assert!(ids.fits(polys));
     let mut groups = DisjointSets::new(polys.len());
     // Per vertex id, the first far polygon using it, and its id among the far vertices
@@ -92,6 +94,7 @@ pub(super) fn keep_far(
     }
     let Some(flat) = flat else {
         return Far {
+            polys,
             kept,
             ..Far::default()
         };
@@ -153,6 +156,7 @@ pub(super) fn keep_far(
         push_ring(&mut out_ids, i);
     }
     Far {
+        polys,
         kept: core,
         ids: out_ids,
         core: n_core,
@@ -233,8 +237,7 @@ fn mergeable(p: &Polygon, q: &Polygon, flat: f64) -> bool {
 /// The boolean's output: both operands' cores, then A's rim and the rest of A (far polygons of
 /// an operand not indexed, and the clipped ones), then B's likewise (the order the polygons had
 /// before the cores were taken out), B's polygons flipped with `flip_b`; with the index of the
-/// cores and rims, if any. Each operand comes as its polygons, its [`Far`] (indices into them)
-/// and its clipped polygons.
+/// cores and rims, if any. Each operand comes as its [`Far`] and its clipped polygons.
 ///
 /// The far polygons are cloned from the operands straight into the output (once: not first
 /// into a list of their own and then moved again), the clipped ones moved, and B's flipped, in
@@ -242,8 +245,8 @@ fn mergeable(p: &Polygon, q: &Polygon, flat: f64) -> bool {
 /// so the order is the one above on any number of threads. The ids, a few words per polygon,
 /// are laid out on the calling thread.
 pub(super) fn assemble(
-    (a_polys, a, a_rest): (&[Polygon], Far, Vec<Polygon>),
-    (b_polys, b, b_rest): (&[Polygon], Far, Vec<Polygon>),
+    (a, a_rest): (Far, Vec<Polygon>),
+    (b, b_rest): (Far, Vec<Polygon>),
     flip_b: bool,
 ) -> (Vec<Polygon>, Option<Indexed>) {
     let total = a.kept.len() + a_rest.len() + b.kept.len() + b_rest.len();
@@ -272,8 +275,8 @@ pub(super) fn assemble(
         }
         p
     };
-    let a_far = |i: &u32| a_polys[*i as usize].clone();
-    let b_far = |i: &u32| turn(b_polys[*i as usize].clone());
+    let a_far = |i: &u32| a.polys[*i as usize].clone();
+    let b_far = |i: &u32| turn(b.polys[*i as usize].clone());
     let mut polygons = Vec::with_capacity(total);
     polygons.par_extend(
         a.kept[..a_core]
