@@ -69,9 +69,9 @@ pub(super) fn repair(
 ) -> Option<(Mesh, Vec<DVec3>, KnownAreas)> {
     let rest = &polygons[index.core..];
     // Where each polygon's corners start in `corners` (counted from the core's end), and the
-    // corners, read in runs in parallel: the polygons lie a few hundred bytes apart, and
-    // reading them one after the other (twice: once to size the list) was a tenth of this
-    // pass's time on the calling thread (rocker-arm, two threads). The runs are joined in order.
+    // corners, copied in runs in parallel, each run into its own part of the list: the polygons
+    // lie a few hundred bytes apart, and reading them one after the other (twice: once to size
+    // the list) was a tenth of this pass's time on the calling thread (rocker-arm, two threads).
     let mut first_corner: Vec<u32> = rest
         .par_iter()
         .with_min_len(GATHER_RUN)
@@ -81,23 +81,25 @@ pub(super) fn repair(
     for f in &mut first_corner {
         (*f, total) = (total, total + *f);
     }
-    let runs: Vec<Vec<DVec3>> = rest
-        .par_chunks(GATHER_RUN)
-        .enumerate()
-        .map(|(k, run)| {
-            let start = first_corner[k * GATHER_RUN];
-            let end = first_corner
-                .get((k + 1) * GATHER_RUN)
-                .copied()
-                .unwrap_or(total);
-            let mut corners = Vec::with_capacity((end - start) as usize);
+    let mut corners = vec![DVec3::ZERO; total as usize];
+    let mut parts: Vec<&mut [DVec3]> = Vec::with_capacity(rest.len().div_ceil(GATHER_RUN));
+    let mut tail = &mut corners[..];
+    for k in (0..rest.len()).step_by(GATHER_RUN) {
+        let end = first_corner.get(k + GATHER_RUN).copied().unwrap_or(total);
+        let (part, after) = tail.split_at_mut((end - first_corner[k]) as usize);
+        parts.push(part);
+        tail = after;
+    }
+    rest.par_chunks(GATHER_RUN)
+        .zip(parts)
+        .for_each(|(run, part)| {
+            let mut at = 0;
             for p in run {
-                corners.extend_from_slice(p.vertices());
+                let vs = p.vertices();
+                part[at..at + vs.len()].copy_from_slice(vs);
+                at += vs.len();
             }
-            corners
-        })
-        .collect();
-    let corners = runs.concat();
+        });
     let wide = Wide::default();
     let (positions, map) = weld_within(&corners, delta, &wide);
     let core_corners = index.core_corners;
