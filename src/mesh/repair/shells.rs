@@ -1,6 +1,7 @@
 //! Pairing half-edges and splitting vertices so that every edge and vertex is manifold.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::discs::one_disc;
 use super::edges::{sort_by_edge, undirected};
@@ -8,6 +9,9 @@ use super::fins::{FIN_SHORTEST_WELDS, cancel_reversed_pairs};
 use super::runs::{closed_runs, runs_of};
 use crate::disjoint_sets::DisjointSets;
 use crate::mesh::Mesh;
+
+/// Triangles per run of [`split_around_discs`]' parallel search for the half-edges to pair.
+const KEYED_RUN: usize = 4096;
 
 /// Builds the mesh with each vertex split into one copy per fan of triangles around it.
 ///
@@ -67,15 +71,22 @@ pub(super) fn split_around_discs(
     let to = |h: usize| triangles[h / 3][(h % 3 + 1) % 3];
     // The half-edges not between two discs, sorted by their undirected edge, as
     // (min << 32 | max, half-edge).
-    let mut keyed: Vec<(u64, u32)> = Vec::new();
-    for (t, tri) in triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            if !(disc[a as usize] && disc[b as usize]) {
-                keyed.push((undirected(a, b), (3 * t + k) as u32));
-            }
-        }
-    }
+    // Found in runs of triangles in parallel, collected in order: the test reads every
+    // triangle, a boolean's core fans included, and few pass it.
+    let keyed: Vec<(u64, u32)> = triangles
+        .par_chunks(KEYED_RUN)
+        .enumerate()
+        .flat_map_iter(|(run, tris)| {
+            let first = run * KEYED_RUN;
+            tris.iter().enumerate().flat_map(move |(t, tri)| {
+                (0..3).filter_map(move |k| {
+                    let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                    let h = (3 * (first + t) + k) as u32;
+                    (!(disc[a as usize] && disc[b as usize])).then(|| (undirected(a, b), h))
+                })
+            })
+        })
+        .collect();
     let keyed = sort_by_edge(&keyed, positions.len()).items;
     let order: Vec<u32> = keyed.iter().map(|&(_, h)| h).collect();
     let mut twin: Vec<u32> = vec![u32::MAX; n];
@@ -102,7 +113,7 @@ pub(super) fn split_around_discs(
     for (g, around) in crowded.iter().enumerate() {
         pair_around(around, across_solid[g], &mut twin);
     }
-    let mut corner_vertex = fan_vertices(&triangles, &twin, disc);
+    let mut corner_vertex = fan_vertices(&triangles, &twin, disc, &order);
     if !crowded.is_empty() {
         let pinched = pinched_edges(&crowded, &corner_vertex);
         let runs = runs_of(&crowded, &triangles, &positions);
@@ -132,7 +143,7 @@ pub(super) fn split_around_discs(
                     pair_around(around, false, &mut flipped_twin);
                 }
             }
-            let flipped_vertex = fan_vertices(&triangles, &flipped_twin, disc);
+            let flipped_vertex = fan_vertices(&triangles, &flipped_twin, disc, &order);
             let flipped_pinched = pinched_edges(&crowded, &flipped_vertex);
             let flipped_closed = closed_runs(&crowded, &triangles, &runs, &flipped_vertex);
             // Per chain: how many pinched edges each pairing leaves, then how many straight
@@ -160,7 +171,7 @@ pub(super) fn split_around_discs(
                     }
                 }
                 twin = flipped_twin;
-                corner_vertex = fan_vertices(&triangles, &twin, disc);
+                corner_vertex = fan_vertices(&triangles, &twin, disc, &order);
             }
         }
     }
@@ -247,17 +258,22 @@ pub(crate) fn split_touching(mesh: &Mesh) -> Option<Mesh> {
 }
 
 /// For each corner (half-edge `h` sits at vertex `from(h)`) not at a `disc` vertex, the fan it
-/// belongs to, named by a corner of it (`u32::MAX` at disc vertices, whose corners are all one
+/// belongs to, named by its first corner (`u32::MAX` at disc vertices, whose corners are all one
 /// fan: see [`one_disc`]; an empty list where every vertex is a disc). Around a vertex, the
 /// corner of the previous half-edge's twin continues the fan.
-fn fan_vertices(triangles: &[[u32; 3]], twin: &[u32], disc: &[bool]) -> Vec<u32> {
+///
+/// `keyed` lists the half-edges not between two discs: every corner at a vertex that is not a
+/// disc starts one of them (so none listed: every vertex is a disc), and only those are joined.
+/// The sets keep their least member as root, so the names do not depend on the order joined.
+fn fan_vertices(triangles: &[[u32; 3]], twin: &[u32], disc: &[bool], keyed: &[u32]) -> Vec<u32> {
     let n = triangles.len() * 3;
-    if triangles.iter().flatten().all(|&v| disc[v as usize]) {
+    if keyed.is_empty() {
         return Vec::new();
     }
     let mut fans = DisjointSets::new(n);
-    for (h, &v) in triangles.iter().flatten().enumerate() {
-        if disc[v as usize] {
+    for &h in keyed {
+        let h = h as usize;
+        if disc[triangles[h / 3][h % 3] as usize] {
             continue;
         }
         let prev = h / 3 * 3 + (h % 3 + 2) % 3;
