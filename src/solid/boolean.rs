@@ -242,13 +242,13 @@ fn boolean_at_least(
     let (near_a, near_b) = surface_a.near_each_other(&surface_b, margin);
     let (a_kept, b_kept) = rayon::join(
         || {
-            let tree_b = focused_tree((&b, &surface_b, &near_b), (&surface_a, &near_a), eps, meter);
+            let tree_b = focused_tree(&surface_b, &near_b, &surface_a, &near_a, eps, meter);
             let far = keep_far(&a, &a_ids, &near_a, &surface_b, a_keep, a_flat, false);
             let near = tree_b.clip(pick(&a, &near_a), a_keep, a_rule, &surface_b, meter);
             (far, near.into_iter().map(|c| c.polygon).collect())
         },
         || {
-            let tree_a = focused_tree((&a, &surface_a, &near_a), (&surface_b, &near_b), eps, meter);
+            let tree_a = focused_tree(&surface_a, &near_a, &surface_b, &near_b, eps, meter);
             let turned = op == BoolOp::Difference;
             let far = keep_far(&b, &b_ids, &near_b, &surface_a, b_keep, b_flat, turned);
             let first = tree_a.clip(
@@ -386,20 +386,21 @@ fn pick(polys: &[Polygon], near: &[bool]) -> Vec<Polygon> {
 /// [`Surface::near_each_other`]): `solid`'s
 /// polygons not near `clipped` are carried whole. The polygons' boxes are the surfaces' own.
 fn focused_tree(
-    solid: (&[Polygon], &Surface, &[bool]),
-    clipped: (&Surface, &[bool]),
+    solid: &Surface,
+    solid_near: &[bool],
+    clipped: &Surface,
+    clipped_near: &[bool],
     eps: f64,
     meter: &Meter,
 ) -> Tree {
-    let (polys, surface, near) = solid;
-    let boxes = near_boxes(clipped.0.boxes(), clipped.1);
+    let boxes = near_boxes(clipped.boxes(), clipped_near);
     Tree::build_focused(
-        polys,
+        solid.polygons(),
         eps,
         Some(Focus {
             boxes: &boxes,
-            near,
-            own: surface.boxes(),
+            near: solid_near,
+            own_boxes: solid.boxes(),
         }),
         Some(meter),
     )

@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use super::Ids;
+use super::{Focus, Ids};
 use crate::geom::Aabb;
 use crate::polygon::Polygon;
 
@@ -21,37 +21,37 @@ pub(super) struct Arena<'a> {
 }
 
 impl<'a> Arena<'a> {
-    /// The arena of `base`, its boxes taken from `boxes` where the caller has them (the
-    /// operand's surface made them, bit for bit `Polygon::bbox`'s), and the centroids made only
-    /// for the polygons `near` marks (all where it is `None`): a far polygon's is never read
-    /// (cell planes are placed by the near ones alone, and far ones are never cut), and on
-    /// real models nearly every polygon is far (rocker-arm ∪ moved: 1.2 k near of 20 k).
-    pub(super) fn new(base: &'a [Polygon], boxes: Option<&[Aabb]>, near: Option<&[bool]>) -> Self {
+    /// The arena of `base`. With a `focus`, its boxes are the focus's `own_boxes` (the
+    /// operand's surface made them, bit for bit `Polygon::bbox`'s), and the centroids are made
+    /// only for the polygons it marks near: a far polygon's is never read (cell planes are
+    /// placed by the near ones alone, and far ones are never cut), and on real models nearly
+    /// every polygon is far (rocker-arm ∪ moved: 1.2 k near of 20 k).
+    pub(super) fn new(base: &'a [Polygon], focus: Option<&Focus>) -> Self {
         // Cell splits cut the long thin triangles of tessellated CAD parts into about two
         // pieces per polygon of the solid: room for that from the start spares copying the
         // growing arena (a fifth of the build's instructions).
         let room = 2 * base.len();
-        let mut own_boxes = Vec::with_capacity(base.len() + room);
-        match boxes {
-            Some(boxes) => {
-                debug_assert_eq!(boxes.len(), base.len(), "a box per polygon");
-                own_boxes.extend_from_slice(boxes);
-            }
-            None => own_boxes.extend(base.iter().map(Polygon::bbox)),
-        }
+        let mut boxes = Vec::with_capacity(base.len() + room);
         let mut centroids = Vec::with_capacity(base.len() + room);
-        match near {
-            Some(near) => centroids.extend(
-                base.iter()
-                    .zip(near)
-                    .map(|(p, &n)| if n { p.centroid() } else { DVec3::NAN }),
-            ),
-            None => centroids.extend(base.iter().map(Polygon::centroid)),
+        match focus {
+            Some(focus) => {
+                debug_assert_eq!(focus.own_boxes.len(), base.len(), "a box per polygon");
+                boxes.extend_from_slice(focus.own_boxes);
+                centroids.extend(
+                    base.iter()
+                        .zip(focus.near)
+                        .map(|(p, &n)| if n { p.centroid() } else { DVec3::NAN }),
+                );
+            }
+            None => {
+                boxes.extend(base.iter().map(Polygon::bbox));
+                centroids.extend(base.iter().map(Polygon::centroid));
+            }
         }
         Arena {
             base,
             pieces: Vec::with_capacity(room),
-            boxes: own_boxes,
+            boxes,
             centroids,
             origins: Vec::with_capacity(room),
             cut: 0,

@@ -51,7 +51,7 @@ pub(crate) struct Focus<'a> {
     pub near: &'a [bool],
     /// Per polygon of the tree, its box (`Polygon::bbox`), which the solid's surface has made
     /// already.
-    pub own: &'a [Aabb],
+    pub own_boxes: &'a [Aabb],
 }
 
 /// Where a finished node is linked in.
@@ -184,7 +184,7 @@ impl Tree {
             return tree;
         }
         let margin = FOCUS_MARGIN * eps;
-        let mut arena = Arena::new(polygons, focus.map(|f| f.own), focus.map(|f| f.near));
+        let mut arena = Arena::new(polygons, focus.as_ref());
         let mut scratch = Scratch::default();
         let all = 0..arena.len() as u32;
         let ids = match focus {

@@ -58,6 +58,11 @@ impl<'a> Surface<'a> {
         }
     }
 
+    /// The polygons, in order.
+    pub fn polygons(&self) -> &'a [Polygon] {
+        self.polygons
+    }
+
     /// The polygons' boxes, in order (each `Polygon::bbox`).
     pub fn boxes(&self) -> &[Aabb] {
         &self.boxes
