@@ -193,14 +193,11 @@ pub(super) fn split_cell(
     let at = plane.offset;
     // Either side may take every polygon (and pieces of the spanning ones): no regrowing.
     let (mut front, mut back) = (scratch.ids_like(&ids), scratch.ids_like(&ids));
-    for &id in &ids.far {
-        let b = &arena.boxes[id as usize];
-        if b.max[axis] > at + eps || b.min[axis] >= at - eps {
-            front.far.push(id);
-        }
-        if b.min[axis] < at - eps || b.max[axis] <= at + eps {
-            back.far.push(id);
-        }
+    let sides = (&mut front.far, &mut back.far);
+    match axis {
+        0 => far_sides::<0>(&ids.far, &arena.boxes, at, eps, sides),
+        1 => far_sides::<1>(&ids.far, &arena.boxes, at, eps, sides),
+        _ => far_sides::<2>(&ids.far, &arena.boxes, at, eps, sides),
     }
     for &id in &ids.near {
         let b = &arena.boxes[id as usize];
@@ -220,6 +217,31 @@ pub(super) fn split_cell(
     }
     scratch.recycle_ids(ids);
     (front, back)
+}
+
+/// The far polygons of a cell split at `at` on axis `AXIS`: each goes whole to each side its
+/// box reaches beyond the tolerance (both, where it lies within it). The axis is a constant,
+/// chosen once per cell, so each box's two coordinates are read at fixed offsets, not through
+/// an index per polygon: this loop walks about twelve far ids for each near one (rocker-arm:
+/// `split_cell` 34.1 → 30.3 M instructions over two booleans).
+fn far_sides<const AXIS: usize>(
+    far: &[u32],
+    boxes: &[Aabb],
+    at: f64,
+    eps: f64,
+    (front, back): (&mut Vec<u32>, &mut Vec<u32>),
+) {
+    let (high, low) = (at + eps, at - eps);
+    for &id in far {
+        let b = &boxes[id as usize];
+        let (min, max) = (b.min[AXIS], b.max[AXIS]);
+        if max > high || min >= low {
+            front.push(id);
+        }
+        if min < low || max <= high {
+            back.push(id);
+        }
+    }
 }
 
 /// [`Polygon::split_as`] by an axis-aligned plane (normal `+axis`), settled from the box where
