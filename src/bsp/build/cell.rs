@@ -100,14 +100,21 @@ pub(super) fn wrap_plane(
         left -= chunk.len();
         for &i in chunk {
             let b = &arena.boxes[i as usize];
+            // Plain comparisons, not `f64::max`/`min` (which spend instructions on NaN): a
+            // coordinate that passed the test above is no NaN, and the edges start infinite.
             for axis in 0..3 {
-                if b.max[axis] < low[axis] {
+                let (max, min) = (b.max[axis], b.min[axis]);
+                if max < low[axis] {
                     below[axis] += 1;
-                    below_edge[axis] = below_edge[axis].max(b.max[axis]);
+                    if max > below_edge[axis] {
+                        below_edge[axis] = max;
+                    }
                 }
-                if b.min[axis] > high[axis] {
+                if min > high[axis] {
                     above[axis] += 1;
-                    above_edge[axis] = above_edge[axis].min(b.min[axis]);
+                    if min < above_edge[axis] {
+                        above_edge[axis] = min;
+                    }
                 }
             }
         }
