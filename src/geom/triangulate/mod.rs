@@ -371,6 +371,17 @@ pub(crate) fn ear_clip(points: &[DVec2]) -> Option<SmallVec<[[usize; 3]; 6]>> {
             if area2 <= 0.0 {
                 continue;
             }
+            // Quality: twice the area over the squared longest edge (1 for the fattest shapes).
+            // Computed first: the blocked-corner test, a pass over the ring, runs only for an
+            // ear that would beat the best so far (the same ear wins either way).
+            let longest = (c - p)
+                .length_squared()
+                .max((q - c).length_squared())
+                .max((p - q).length_squared());
+            let quality = area2 / longest;
+            if best.is_some_and(|(b, _)| quality <= b) {
+                continue;
+            }
             let blocked = ring.iter().any(|&j| {
                 j != ip
                     && j != i
@@ -382,16 +393,7 @@ pub(crate) fn ear_clip(points: &[DVec2]) -> Option<SmallVec<[[usize; 3]; 6]>> {
                     && cross(c, q, points[j]) >= 0.0
                     && cross(q, p, points[j]) >= 0.0
             });
-            if blocked {
-                continue;
-            }
-            // Quality: twice the area over the squared longest edge (1 for the fattest shapes).
-            let longest = (c - p)
-                .length_squared()
-                .max((q - c).length_squared())
-                .max((p - q).length_squared());
-            let quality = area2 / longest;
-            if best.is_none_or(|(b, _)| quality > b) {
+            if !blocked {
                 best = Some((quality, k));
             }
         }
