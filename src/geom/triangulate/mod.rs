@@ -393,7 +393,8 @@ pub(crate) fn ear_clip(points: &[DVec2]) -> Option<SmallVec<[[usize; 3]; 6]>> {
                     && cross(c, q, points[j]) >= 0.0
                     && cross(q, p, points[j]) >= 0.0
             });
-            if !blocked {
+            // Checked again so a NaN quality (which passes the skip above) never wins, as before.
+            if !blocked && best.is_none_or(|(b, _)| quality > b) {
                 best = Some((quality, k));
             }
         }
