@@ -200,11 +200,11 @@ pub(super) fn split_cell(
     let at = plane.offset;
     // Either side may take every polygon (and pieces of the spanning ones): no regrowing.
     let (mut front, mut back) = (scratch.ids_like(&ids), scratch.ids_like(&ids));
-    let sides = (&mut front.far, &mut back.far);
+    let (far, boxes) = (&ids.far, &arena.boxes);
     match axis {
-        0 => far_sides::<0>(&ids.far, &arena.boxes, at, eps, sides),
-        1 => far_sides::<1>(&ids.far, &arena.boxes, at, eps, sides),
-        _ => far_sides::<2>(&ids.far, &arena.boxes, at, eps, sides),
+        0 => far_sides::<0>(far, boxes, at, eps, &mut front.far, &mut back.far),
+        1 => far_sides::<1>(far, boxes, at, eps, &mut front.far, &mut back.far),
+        _ => far_sides::<2>(far, boxes, at, eps, &mut front.far, &mut back.far),
     }
     for &id in &ids.near {
         let b = &arena.boxes[id as usize];
@@ -236,7 +236,8 @@ fn far_sides<const AXIS: usize>(
     boxes: &[Aabb],
     at: f64,
     eps: f64,
-    (front, back): (&mut Vec<u32>, &mut Vec<u32>),
+    front: &mut Vec<u32>,
+    back: &mut Vec<u32>,
 ) {
     let (high, low) = (at + eps, at - eps);
     for &id in far {

@@ -379,7 +379,7 @@ pub(crate) fn ear_clip(points: &[DVec2]) -> Option<SmallVec<[[usize; 3]; 6]>> {
                 .max((q - c).length_squared())
                 .max((p - q).length_squared());
             let quality = area2 / longest;
-            if best.is_some_and(|(b, _)| quality <= b) {
+            if !best.is_none_or(|(b, _)| quality > b) {
                 continue;
             }
             let blocked = ring.iter().any(|&j| {
@@ -393,8 +393,7 @@ pub(crate) fn ear_clip(points: &[DVec2]) -> Option<SmallVec<[[usize; 3]; 6]>> {
                     && cross(c, q, points[j]) >= 0.0
                     && cross(q, p, points[j]) >= 0.0
             });
-            // Checked again so a NaN quality (which passes the skip above) never wins, as before.
-            if !blocked && best.is_none_or(|(b, _)| quality > b) {
+            if !blocked {
                 best = Some((quality, k));
             }
         }
